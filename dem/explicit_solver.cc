@@ -1,0 +1,355 @@
+#include "explicit_solver.h"
+#include "bond_kernel.h"
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace dembridge::dem
+{
+ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
+                               std::vector<Group> groups, std::vector<Constraint> constraints,
+                               std::vector<Load> loads, const SolverSettings& settings)
+    : p_(particles), b_(bonds), groups_(std::move(groups)), constraints_(std::move(constraints)),
+      loads_(std::move(loads)), settings_(settings)
+{
+  if (!(settings_.time_step > 0))
+    throw InputError("Simulation/time step: must be positive");
+  if (settings_.particle_damping < 0 || settings_.particle_damping >= 1)
+    throw InputError("Damping/particle damping: must lie in [0, 1)");
+  settings_.threads = std::max(1, settings_.threads);
+  std::vector<char> touched(p_.size(), 0);
+  for (const auto& c : constraints_)
+    for (int i : groups_.at(c.group).members)
+      touched[i] = 1;
+  for (const auto& l : loads_)
+    if (l.prescribes_motion())
+      for (int i : groups_.at(l.group).members)
+        touched[i] = 1;
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (touched[i])
+      constrained_.push_back(int(i));
+  constrained_v_.resize(constrained_.size());
+  constrained_w_.resize(constrained_.size());
+  constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
+  for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
+    for (int i : groups_[g].members)
+      p_.group_mask[i] |= 1u << g;
+  partition_bonds();
+  for (std::size_t i = 0; i < p_.size(); ++i) // energy present at the start (eq. 53)
+    energy_.initial += 0.5 * p_.mass[i] * p_.velocity[i].squaredNorm() +
+                       0.5 * p_.inertia[i] * p_.angular_velocity[i].squaredNorm();
+  energy_.kinetic = energy_.initial;
+}
+
+// Spatial slabs along the longest extent; see the header for the phases.
+void ExplicitSolver::partition_bonds()
+{
+  const std::size_t nb = b_.size();
+  const int T = settings_.threads;
+  phases_.assign(4, {});
+  if (T == 1 || nb == 0 || p_.size() < 2)
+  {
+    phases_[3].push_back({0, nb});
+    return;
+  }
+  Vec3 lo = p_.position[0], hi = p_.position[0];
+  for (const auto& x : p_.position)
+    lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  int axis;
+  (hi - lo).maxCoeff(&axis);
+  std::vector<double> coord(p_.size());
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    coord[i] = p_.position[i][axis];
+  std::vector<double> sorted = coord;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<double> cuts; // slab s holds coord in [cuts[s-1], cuts[s])
+  for (int s = 1; s < T; ++s)
+    cuts.push_back(sorted[sorted.size() * s / T]);
+  auto slab = [&](int i)
+  { return int(std::upper_bound(cuts.begin(), cuts.end(), coord[i]) - cuts.begin()); };
+  // bucket: slab s interior -> s; cut (s, s+1) -> T + s; other -> 2T
+  std::vector<int> bucket(nb);
+  for (std::size_t k = 0; k < nb; ++k)
+  {
+    const int sa = slab(b_.a[k]), sb = slab(b_.b[k]);
+    bucket[k] = sa == sb ? sa : (std::abs(sa - sb) == 1 ? T + std::min(sa, sb) : 2 * T);
+  }
+  std::vector<std::size_t> order(nb);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return bucket[x] < bucket[y]; });
+  auto permute = [&](auto& v)
+  {
+    auto copy = v;
+    for (std::size_t k = 0; k < nb; ++k)
+      v[k] = copy[order[k]];
+  };
+  permute(b_.a), permute(b_.b), permute(b_.rest_length), permute(b_.rest_axis);
+  permute(b_.kn), permute(b_.ks), permute(b_.ktor), permute(b_.kben);
+  permute(b_.contact_fraction), permute(b_.radius), permute(b_.damping_force);
+  permute(b_.damping_moment), permute(b_.model), permute(b_.state), permute(b_.force);
+  permute(b_.moment), permute(bucket);
+  auto range_of = [&](int bk)
+  {
+    auto first = std::lower_bound(bucket.begin(), bucket.end(), bk) - bucket.begin();
+    auto last = std::upper_bound(bucket.begin(), bucket.end(), bk) - bucket.begin();
+    return std::pair<std::size_t, std::size_t>(first, last);
+  };
+  for (int s = 0; s < T; ++s)
+    phases_[0].push_back(range_of(s));
+  for (int s = 0; s + 1 < T; ++s)
+    phases_[1 + (s % 2)].push_back(range_of(T + s));
+  phases_[3].push_back(range_of(2 * T));
+}
+
+template <bool record>
+void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& dissipation,
+                                double& strain)
+{
+  auto& x = p_.position;
+  auto& q = p_.orientation;
+  auto& v = p_.velocity;
+  auto& w = p_.angular_velocity;
+  auto& F = p_.force;
+  auto& M = p_.torque;
+  for (std::size_t k = begin; k < end; ++k)
+  {
+    if (b_.state[k] != BondState::intact)
+      continue;
+    const int ia = b_.a[k], ib = b_.b[k];
+    const BondResult r =
+        evaluate_bond({x[ia], x[ib], q[ia], q[ib], v[ia], v[ib], w[ia], w[ib]},
+                      {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k],
+                       b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
+                       b_.damping_moment[k]});
+    F[ia] += r.Fa;
+    M[ia] += r.Ma;
+    F[ib] += r.Fb;
+    M[ib] += r.Mb;
+    dissipation += r.dissipation_power;
+    if constexpr (record)
+    {
+      strain += r.strain_energy;
+      b_.force[k] = r.Fc;
+      b_.moment[k] = r.Mc;
+    }
+  }
+}
+
+template <bool record>
+void ExplicitSolver::compute_bond_forces()
+{
+  double dissipation = 0, strain = 0;
+  for (int phase = 0; phase < 3; ++phase)
+  {
+    const auto& ranges = phases_[phase];
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : dissipation, strain)
+    for (std::size_t r = 0; r < ranges.size(); ++r)
+      bond_range<record>(ranges[r].first, ranges[r].second, dissipation, strain);
+  }
+  for (const auto& range : phases_[3])
+    bond_range<record>(range.first, range.second, dissipation, strain);
+  dashpot_work_ += dissipation * settings_.time_step; // thesis eq. 51
+  if constexpr (record)
+    energy_.strain = strain;
+}
+
+void ExplicitSolver::apply_loads()
+{
+  const double t = time_, dt = settings_.time_step;
+  // Supports and prescribed motion, evaluated at the half step the velocity update targets.
+  for (std::size_t c = 0; c < constrained_.size(); ++c)
+  {
+    const int i = constrained_[c];
+    p_.dof_mask[i] = 0;
+    p_.prescribed_velocity[i].setZero();
+    p_.prescribed_angular_velocity[i].setZero();
+    constrained_v_[c] = p_.velocity[i];
+    constrained_w_[c] = p_.angular_velocity[i];
+  }
+  for (const auto& c : constraints_)
+    for (int i : groups_[c.group].members)
+      p_.dof_mask[i] |= c.dofs;
+  for (const auto& l : loads_)
+  {
+    const auto& members = groups_[l.group].members;
+    if (l.prescribes_motion())
+    {
+      if (!l.active(t + 0.5 * dt))
+        continue;
+      const Vec3 value = l.value * l.factor(t + 0.5 * dt);
+      const bool rot = l.kind == LoadKind::angular_velocity;
+      for (int i : members)
+        for (int k = 0; k < 3; ++k)
+          if (l.components & (1u << k))
+          {
+            p_.dof_mask[i] |= std::uint8_t(1u << (k + (rot ? 3 : 0)));
+            (rot ? p_.prescribed_angular_velocity[i] : p_.prescribed_velocity[i])[k] = value[k];
+          }
+    }
+    else
+    {
+      const double inv_n = 1.0 / double(members.size());
+      const Vec3 share = l.value * (l.factor(t) * inv_n);
+      // trapezoidal work 1/2 (F^{n-1} + F^n) . (x^n - x^{n-1}) (thesis eq. 52)
+      const Vec3 mean_share =
+          steps_ > 0 ? Vec3(0.5 * (share + l.value * (l.factor(t - dt) * inv_n))) : Vec3::Zero();
+      const bool moment = l.kind == LoadKind::moment;
+      for (int i : members)
+      {
+        (moment ? p_.torque[i] : p_.force[i]) += share;
+        energy_.external +=
+            dt * mean_share.dot(moment ? p_.angular_velocity[i] : p_.velocity[i]);
+      }
+    }
+  }
+}
+
+template <bool record>
+void ExplicitSolver::integrate()
+{
+  const double dt = settings_.time_step, gamma = settings_.particle_damping;
+  const std::size_t n = p_.size();
+  double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0;
+  auto& x = p_.position;
+  auto& v = p_.velocity;
+  auto& w = p_.angular_velocity;
+  auto& q = p_.orientation;
+  auto& F = p_.force;
+  auto& M = p_.torque;
+#pragma omp parallel for num_threads(settings_.threads) schedule(static) reduction(+ : dissipation, kinetic, lead) reduction(max : vmax2)
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double m = p_.mass[i], I = p_.inertia[i];
+    const std::uint8_t mask = p_.dof_mask[i];
+    const Vec3 v0 = v[i], w0 = w[i];
+    Vec3 v1, w1;
+    for (int k = 0; k < 3; ++k)
+    {
+      // translations (eq. 40) and rotations (eq. 44); particle damping (paper eq. 11-12)
+      if (mask & (1u << k))
+      {
+        v1[k] = p_.prescribed_velocity[i][k];
+        F[i][k] = m * (v1[k] - v0[k]) / dt - F[i][k]; // support reaction
+      }
+      else
+      {
+        const double damp = gamma * std::abs(F[i][k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
+        v1[k] = v0[k] + dt * (F[i][k] - damp) / m;
+        dissipation += damp * 0.5 * (v0[k] + v1[k]) * dt;
+        if constexpr (record)
+          lead += damp * 0.5 * v1[k] * dt;
+      }
+      if (mask & (1u << (k + 3)))
+      {
+        w1[k] = p_.prescribed_angular_velocity[i][k];
+        M[i][k] = I * (w1[k] - w0[k]) / dt - M[i][k];
+      }
+      else
+      {
+        const double damp = gamma * std::abs(M[i][k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
+        w1[k] = w0[k] + dt * (M[i][k] - damp) / I;
+        dissipation += damp * 0.5 * (w0[k] + w1[k]) * dt;
+        if constexpr (record)
+          lead += damp * 0.5 * w1[k] * dt;
+      }
+    }
+    v[i] = v1;
+    w[i] = w1;
+    x[i] += dt * v1; // eq. 41
+    // q <- exp(dt w / 2) q, with a series for small angles (eq. 45 in quaternion form)
+    const Vec3 h = 0.5 * dt * w1;
+    const double a2 = h.squaredNorm();
+    double c, s;
+    if (a2 < 1e-6)
+    {
+      c = 1.0 - a2 / 2.0 + a2 * a2 / 24.0;
+      s = 1.0 - a2 / 6.0 + a2 * a2 / 120.0;
+    }
+    else
+    {
+      const double a = std::sqrt(a2);
+      c = std::cos(a);
+      s = std::sin(a) / a;
+    }
+    q[i] = (Quat(c, s * h.x(), s * h.y(), s * h.z()) * q[i]).normalized();
+    if constexpr (record)
+    {
+      // eq. 49, time-centred at t_n as 1/2 m v^{n-1/2}.v^{n+1/2}: the form the leapfrog
+      // scheme conserves exactly for a linear undamped system
+      kinetic += 0.5 * m * v0.dot(v1) + 0.5 * I * w0.dot(w1);
+      vmax2 = std::max(vmax2, v1.squaredNorm());
+    }
+  }
+  // Particle damping work: the running sum of d^n . (v^{n-1/2} + v^{n+1/2})/2 dt runs half a
+  // step ahead of t_n; the trapezoidal value at t_n drops the last half term ("lead").
+  particle_damping_work_ += dissipation;
+  if constexpr (record)
+  {
+    energy_.damping = dashpot_work_ + particle_damping_work_ - lead;
+    energy_.kinetic = kinetic;
+    max_speed_ = std::sqrt(vmax2);
+  }
+  // Work of supports with prescribed motion: 1/2 (R^{n-1} + R^n) . (x^n - x^{n-1}).
+  for (std::size_t c = 0; c < constrained_.size(); ++c)
+  {
+    const int i = constrained_[c];
+    const std::uint8_t mask = p_.dof_mask[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double R = mask & (1u << k) ? F[i][k] : 0.0;
+      const double Rm = mask & (1u << (k + 3)) ? M[i][k] : 0.0;
+      energy_.external += 0.5 * (constrained_reaction_[c][k] + R) * constrained_v_[c][k] * dt;
+      energy_.external +=
+          0.5 * (constrained_reaction_[c][k + 3] + Rm) * constrained_w_[c][k] * dt;
+      constrained_reaction_[c][k] = R;
+      constrained_reaction_[c][k + 3] = Rm;
+    }
+  }
+}
+
+void ExplicitSolver::step(bool record)
+{
+  std::fill(p_.force.begin(), p_.force.end(), Vec3::Zero());
+  std::fill(p_.torque.begin(), p_.torque.end(), Vec3::Zero());
+  if (record)
+    compute_bond_forces<true>();
+  else
+    compute_bond_forces<false>();
+  apply_loads();
+  if (record)
+    integrate<true>();
+  else
+    integrate<false>();
+  time_ += settings_.time_step;
+  ++steps_;
+}
+
+Vec3 ExplicitSolver::group_force(int group) const
+{
+  Vec3 sum = Vec3::Zero();
+  for (int i : groups_.at(group).members)
+    sum += p_.force[i];
+  return sum;
+}
+
+Vec3 ExplicitSolver::group_mean_displacement(int group) const
+{
+  Vec3 sum = Vec3::Zero();
+  const auto& m = groups_.at(group).members;
+  for (int i : m)
+    sum += p_.position[i] - p_.reference_position[i];
+  return sum / double(m.size());
+}
+
+double ExplicitSolver::last_ramp_end() const
+{
+  double t = 0;
+  for (const auto& l : loads_)
+    t = std::max(t, l.ramp_time);
+  return t;
+}
+} // namespace dembridge::dem

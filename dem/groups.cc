@@ -1,0 +1,70 @@
+#include "groups.h"
+#include <algorithm>
+
+namespace dembridge::dem
+{
+std::pair<int, bool> parse_face(const std::string& t, const std::string& where)
+{
+  if (t.size() == 2 && t[0] >= 'x' && t[0] <= 'z' && (t[1] == '-' || t[1] == '+'))
+    return {t[0] - 'x', t[1] == '+'};
+  throw InputError(where + ": unknown face '" + t + "' (expected x-, x+, y-, y+, z- or z+)");
+}
+
+Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& s,
+                   const std::string& where)
+{
+  Group g;
+  g.name = name;
+  const long n = long(p.size());
+  using K = GroupSelection::Kind;
+  switch (s.kind)
+  {
+  case K::all:
+    for (long i = 0; i < n; ++i)
+      g.members.push_back(int(i));
+    break;
+  case K::index:
+    for (long i : s.indices)
+    {
+      const long k = i < 0 ? n + i : i;
+      if (k < 0 || k >= n)
+        throw InputError(where + ": particle index " + std::to_string(i) +
+                         " is out of range (there are " + std::to_string(n) + " particles)");
+      g.members.push_back(int(k));
+    }
+    break;
+  case K::box:
+    for (long i = 0; i < n; ++i)
+    {
+      const Vec3& x = p.position[i];
+      if ((x.array() >= s.box_min.array()).all() && (x.array() <= s.box_max.array()).all())
+        g.members.push_back(int(i));
+    }
+    break;
+  case K::face:
+  {
+    if (n == 0)
+      break;
+    const int a = s.face_axis;
+    double lo = p.position[0][a] - p.radius[0], hi = p.position[0][a] + p.radius[0];
+    for (long i = 0; i < n; ++i)
+    {
+      lo = std::min(lo, p.position[i][a] - p.radius[i]);
+      hi = std::max(hi, p.position[i][a] + p.radius[i]);
+    }
+    for (long i = 0; i < n; ++i)
+    {
+      const double dist = s.face_upper ? hi - p.position[i][a] : p.position[i][a] - lo;
+      if (dist <= s.face_thickness * p.radius[i] * (1.0 + 1e-9))
+        g.members.push_back(int(i));
+    }
+    break;
+  }
+  }
+  std::sort(g.members.begin(), g.members.end());
+  g.members.erase(std::unique(g.members.begin(), g.members.end()), g.members.end());
+  if (g.members.empty())
+    throw InputError(where + ": group '" + name + "' selects no particle");
+  return g;
+}
+} // namespace dembridge::dem

@@ -1,0 +1,45 @@
+#pragma once
+// Particle groups: named sets of particle indices selected by geometry or index, used for
+// supports, loads and measurements. Selections:
+//   all                    every particle
+//   index  i, j, ...       explicit indices; negative counts from the end (-1 = last)
+//   box    min, max        centres inside the axis-aligned box [min, max] (m)
+//   face   x-|x+|y-|y+|z-|z+, thickness t
+//                          centres within t * r of that face of the specimen's bounding box
+//                          (r = particle radius; the thesis' end zones use t = 1.5)
+#include "particle_store.h"
+#include <string>
+#include <vector>
+
+namespace dembridge::dem
+{
+struct GroupSelection
+{
+  enum class Kind
+  {
+    all,
+    index,
+    box,
+    face
+  } kind = Kind::all;
+  std::vector<long> indices;
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
+  int face_axis = 0;      ///< 0, 1, 2
+  bool face_upper = false; ///< true: the + face
+  double face_thickness = 1.5;
+};
+
+struct Group
+{
+  std::string name;
+  std::vector<int> members;
+};
+
+/// Resolves a selection; throws InputError naming `where` if it selects nothing or an index is
+/// out of range.
+Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& sel,
+                   const std::string& where);
+
+/// Parses "x-", "z+" ... into (axis, upper).
+std::pair<int, bool> parse_face(const std::string& text, const std::string& where);
+} // namespace dembridge::dem
