@@ -31,8 +31,8 @@ enum class BondModel : std::uint8_t
 
 /// The names a user types in a case file, in enum order. One registry gives the parser and the
 /// Patterns::Selection string.
-inline constexpr std::array<std::string_view, 3> bond_model_names = {"parallel_bond",
-                                                                     "euler_bernoulli", "timoshenko"};
+inline constexpr std::array<std::string_view, 3> bond_model_names = {{"parallel_bond",
+                                                                     "euler_bernoulli", "timoshenko"}};
 
 BondModel bond_model_from_name(std::string_view name);
 std::string bond_model_selection(); ///< "parallel_bond|euler_bernoulli|timoshenko"

@@ -1,0 +1,125 @@
+#include "case_file.h"
+#include "dem_parameters.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/fem_case.h"
+#endif
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <stdexcept>
+
+namespace dembridge::app
+{
+void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std::string>& groups,
+                            const std::vector<std::string>& loads)
+{
+  prm.declare_entry("Mode", "dem", dealii::Patterns::Selection("dem|fem"),
+                    "dem: bonded-particle model (sections Particles ... Output); fem: deal.II "
+                    "continuum (section FEM).");
+  declare_dem_parameters(prm);
+  declare_group_parameters(prm, groups);
+  declare_load_parameters(prm, loads);
+#ifdef DEMBRIDGE_HAVE_FEM
+  fem::declare_parameters(prm);
+#endif
+}
+
+std::string one_line(const std::string& what)
+{
+  std::string s = what;
+  const auto info = s.find("Additional information:");
+  if (info != std::string::npos)
+  {
+    s = s.substr(info + 23);
+    const auto stack = s.find("Stacktrace:");
+    if (stack != std::string::npos)
+      s = s.substr(0, stack);
+  }
+  s = std::regex_replace(s, std::regex("[\\s-]*\\n[\\s-]*"), " ");
+  s = std::regex_replace(s, std::regex("\\s+"), " ");
+  const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
+  return b == std::string::npos ? std::string("unknown error") : s.substr(b, e - b + 1);
+}
+
+namespace
+{
+void apply_override(dealii::ParameterHandler& prm, const std::string& text)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    throw std::runtime_error("--set '" + text + "': expected Section/Key=value");
+  std::string path = text.substr(0, eq), value = text.substr(eq + 1);
+  auto trim = [](std::string s)
+  {
+    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  path = trim(path);
+  value = trim(value);
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t slash; (slash = path.find('/', start)) != std::string::npos; start = slash + 1)
+    parts.push_back(trim(path.substr(start, slash - start)));
+  const std::string key = trim(path.substr(start));
+  // Reject unknown sections/keys with our own message (deal.II would assert).
+  std::string as_prm;
+  for (const auto& s : parts)
+    as_prm += "subsection " + s + "\n";
+  as_prm += "set " + key + " = " + value + "\n";
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    as_prm += "end\n";
+  try
+  {
+    prm.parse_input_from_string(as_prm, "", false);
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error("--set " + path + ": " + one_line(e.what()));
+  }
+}
+
+void parse_file(dealii::ParameterHandler& prm, const std::string& file,
+                const std::vector<std::string>& overrides, bool skip_undefined)
+{
+  try
+  {
+    prm.parse_input(file, "", skip_undefined, false);
+  }
+  catch (const std::exception& e)
+  {
+    std::string msg = one_line(e.what());
+    if (msg.find(file) == std::string::npos)
+      msg = file + ": " + msg;
+    throw std::runtime_error(msg);
+  }
+  for (const auto& o : overrides)
+    apply_override(prm, o);
+}
+} // namespace
+
+std::unique_ptr<dealii::ParameterHandler> read_case(const std::string& file,
+                                                    const std::vector<std::string>& overrides)
+{
+  if (!std::filesystem::is_regular_file(file))
+    throw std::runtime_error(file + ": no such case file");
+  {
+    std::ifstream probe(file);
+    if (!probe)
+      throw std::runtime_error(file + ": cannot read the case file");
+  }
+  // Pass 1: only to learn the group and load names.
+  dealii::ParameterHandler first;
+  declare_all_parameters(first);
+  parse_file(first, file, {}, true);
+  for (const auto& o : overrides)
+    if (o.rfind("Groups/names", 0) == 0 || o.rfind("Loads/names", 0) == 0)
+      apply_override(first, o);
+  const auto groups = split_names(first.get({"Groups"}, "names"));
+  const auto loads = split_names(first.get({"Loads"}, "names"));
+  // Pass 2: strict, with every named subsection declared.
+  auto prm = std::make_unique<dealii::ParameterHandler>();
+  declare_all_parameters(*prm, groups, loads);
+  parse_file(*prm, file, overrides, false);
+  return prm;
+}
+} // namespace dembridge::app

@@ -1,0 +1,337 @@
+#include "dem_parameters.h"
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace dembridge::app
+{
+using dealii::ParameterHandler;
+using dealii::Patterns::Anything;
+using dealii::Patterns::Bool;
+using dealii::Patterns::Double;
+using dealii::Patterns::Integer;
+using dealii::Patterns::List;
+using dealii::Patterns::Selection;
+namespace dem = dembridge::dem;
+
+namespace
+{
+const List vector3(Double(), 3, 3);
+
+dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
+{
+  const auto v = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get(key), ','));
+  return {v[0], v[1], v[2]};
+}
+
+std::vector<double> get_doubles(ParameterHandler& prm, const std::string& key)
+{
+  return dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get(key), ','));
+}
+} // namespace
+
+std::vector<std::string> split_names(const std::string& text)
+{
+  std::vector<std::string> out;
+  for (auto& s : dealii::Utilities::split_string_list(text, ','))
+    if (!s.empty())
+      out.push_back(s);
+  return out;
+}
+
+void declare_dem_parameters(ParameterHandler& prm)
+{
+  prm.enter_subsection("Particles");
+  prm.declare_entry("source", "row", Selection("row|file|cubic|hcp"),
+                    "Where the spheres come from: a row (beams), a CSV file 'x, y, z, r' (m), or "
+                    "a simple cubic / HCP lattice filling 'box size'.");
+  prm.declare_entry("count", "2", Integer(1), "Number of particles of a row.");
+  prm.declare_entry("radius", "0.01", Double(), "Particle radius (m), row and lattices.");
+  prm.declare_entry("radii", "", List(Double(), 0), "Per-particle radii of a row (m); overrides radius.");
+  prm.declare_entry("spacing", "0", Double(0), "Centre distance of a row (m); 0: neighbours touch.");
+  prm.declare_entry("origin", "0, 0, 0", vector3, "First particle centre of a row / lattice corner (m).");
+  prm.declare_entry("direction", "1, 0, 0", vector3, "Axis of a row.");
+  prm.declare_entry("box size", "0.25, 0.1, 0.1", vector3, "Box filled by a lattice (m).");
+  prm.declare_entry("file", "", Anything(), "Particle CSV file (source = file), relative to the case file.");
+  prm.declare_entry("density", "2500", Double(), "Particle density (kg/m^3).");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Bonds");
+  prm.declare_entry("model", "timoshenko", Selection(dem::bond_model_selection()),
+                    "Bond model (Chen et al. 2022): parallel_bond (PBM), euler_bernoulli (EBBM), "
+                    "timoshenko (TBBM).");
+  prm.declare_entry("youngs modulus", "4e9", Double(), "Bond Young's modulus E_b (Pa).");
+  prm.declare_entry("poisson ratio", "0.3", Double(), "Bond Poisson's ratio nu_b, in (-1, 0.5).");
+  prm.declare_entry("radius multiplier", "1", Double(), "Bond radius = multiplier x smaller particle radius.");
+  prm.declare_entry("contact radius multiplier", "1", Double(),
+                    "Bond particles whose contact radii (multiplier x radius) touch or overlap.");
+  prm.declare_entry("stiffness ratio", "0", Double(0),
+                    "PBM only: k_n/k_s (kappa); 0 gives 2(1 + nu_b) (paper eq. 8). Thesis: 4.2.");
+  prm.declare_entry("normal stiffness per area", "0", Double(0),
+                    "PBM only: k̄_n (Pa/m), the thesis' E_b/(2 r_p); 0 gives E_b / L_b.");
+  prm.declare_entry("pairs", "", Anything(),
+                    "Explicit bonds 'i-j, k-l' (particle indices); empty: bond by contact radius.");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Damping");
+  prm.declare_entry("bond damping ratio", "0", Double(0),
+                    "Damping ratio xi of the bond dashpots, scaled by coordination (thesis eq. 35-37).");
+  prm.declare_entry("particle damping", "0", Double(0, 0.999),
+                    "Particle (local) damping gamma in [0, 1) (paper eq. 11-12).");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Simulation");
+  prm.declare_entry("time step", "auto", Anything(),
+                    "Time step (s), or 'auto' for 'time step safety' x the critical step.");
+  prm.declare_entry("time step safety", "0.8", Double(0, 1), "Fraction of the critical step used by 'auto'.");
+  prm.declare_entry("end time", "1", Double(0), "Simulated time (s).");
+  prm.declare_entry("quasi-static speed", "0", Double(0),
+                    "Stop after the load ramps once the largest particle speed is below this (m/s); 0: off.");
+  prm.declare_entry("max steps", "100000000", Integer(1), "Step limit.");
+  prm.declare_entry("threads", "1", Integer(1, 256), "Threads for the force and update loops.");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Groups");
+  prm.declare_entry("names", "", Anything(),
+                    "Comma-separated group names; each needs a 'subsection Group NAME'.");
+  prm.leave_subsection();
+  prm.enter_subsection("Loads");
+  prm.declare_entry("names", "", Anything(),
+                    "Comma-separated load names; each needs a 'subsection Load NAME'.");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Measurements");
+  prm.declare_entry("deflection group", "", Anything(), "Group whose mean displacement is the deflection.");
+  prm.declare_entry("deflection name", "deflection",
+                    Selection("deflection|tip_deflection|midspan_deflection"),
+                    "Key of the deflection in summary.json.");
+  prm.declare_entry("deflection direction", "0, 0, -1", vector3, "Deflection = mean displacement . direction.");
+  prm.declare_entry("frequency group", "", Anything(),
+                    "Group whose free vibration (after every load has ended) gives natural_frequency.");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  prm.declare_entry("history interval", "100", Integer(1), "Steps between history.csv rows.");
+  prm.declare_entry("snapshot interval", "0", Integer(0),
+                    "Steps between ParaView snapshots; 0: first and last step only.");
+  prm.declare_entry("write vtu", "true", Bool(), "Write ParaView files (particles, bonds).");
+  prm.leave_subsection();
+}
+
+void declare_group_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
+{
+  for (const auto& name : names)
+  {
+    prm.enter_subsection("Group " + name);
+    prm.declare_entry("select", "index", Selection("all|index|box|face"),
+                      "How the group is selected.");
+    prm.declare_entry("indices", "", List(Integer(), 0),
+                      "Particle indices (select = index); negative counts from the end.");
+    prm.declare_entry("box min", "0, 0, 0", vector3, "Lower corner (m), select = box.");
+    prm.declare_entry("box max", "0, 0, 0", vector3, "Upper corner (m), select = box.");
+    prm.declare_entry("face", "x-", Selection("x-|x+|y-|y+|z-|z+"), "Specimen face, select = face.");
+    prm.declare_entry("face thickness", "1.5", Double(0),
+                      "Centres within thickness x radius of the face (thesis: 1.5).");
+    prm.declare_entry("fixed", "", Anything(), "Held DOFs: any of ux, uy, uz, rx, ry, rz, or all.");
+    prm.declare_entry("mass", "0", Double(0), "Mass of each particle (kg); 0: density x volume.");
+    prm.declare_entry("initial velocity", "0, 0, 0", vector3, "Initial velocity (m/s).");
+    prm.leave_subsection();
+  }
+}
+
+void declare_load_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
+{
+  for (const auto& name : names)
+  {
+    prm.enter_subsection("Load " + name);
+    prm.declare_entry("group", "", Anything(), "Group the load acts on.");
+    prm.declare_entry("type", "force", Selection("force|moment|velocity|angular velocity"),
+                      "force/moment: group total (N, N·m) shared equally; velocity/angular "
+                      "velocity: prescribed per particle (m/s, rad/s).");
+    prm.declare_entry("value", "0, 0, 0", vector3, "Full value, reached at the end of the ramp.");
+    prm.declare_entry("components", "x, y, z", List(Selection("x|y|z"), 1, 3),
+                      "Prescribed components (velocity types).");
+    prm.declare_entry("ramp time", "0", Double(0), "Linear ramp from 0 over this time (s).");
+    prm.declare_entry("end time", "inf", Anything(),
+                      "Time (s) at which the load is removed / the DOFs released; 'inf': never.");
+    prm.leave_subsection();
+  }
+}
+
+dem::CaseConfig parse_dem_case(ParameterHandler& prm)
+{
+  dem::CaseConfig c;
+  using K = dem::ParticleSource::Kind;
+  prm.enter_subsection("Particles");
+  {
+    auto& s = c.particles;
+    const std::string src = prm.get("source");
+    s.kind = src == "row" ? K::row : src == "file" ? K::file : src == "cubic" ? K::cubic : K::hcp;
+    s.count = prm.get_integer("count");
+    s.radius = prm.get_double("radius");
+    s.radii = get_doubles(prm, "radii");
+    s.spacing = prm.get_double("spacing");
+    s.origin = get_vec3(prm, "origin");
+    s.direction = get_vec3(prm, "direction");
+    s.box_size = get_vec3(prm, "box size");
+    s.file = prm.get("file");
+    s.density = prm.get_double("density");
+    if (s.kind == K::file && s.file.empty())
+      throw dem::InputError("Particles/file: source = file needs a file name");
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Bonds");
+  {
+    auto& m = c.bonds.material;
+    m.model = dem::bond_model_from_name(prm.get("model"));
+    m.youngs_modulus = prm.get_double("youngs modulus");
+    m.poisson_ratio = prm.get_double("poisson ratio");
+    m.radius_multiplier = prm.get_double("radius multiplier");
+    m.stiffness_ratio = prm.get_double("stiffness ratio");
+    m.normal_stiffness_per_area = prm.get_double("normal stiffness per area");
+    c.bonds.contact_radius_multiplier = prm.get_double("contact radius multiplier");
+    for (const auto& pair : split_names(prm.get("pairs")))
+    {
+      const auto dash = pair.find('-', 1);
+      try
+      {
+        if (dash == std::string::npos)
+          throw std::invalid_argument("no dash");
+        c.bonds.explicit_bonds.push_back(
+            {std::stoi(pair.substr(0, dash)), std::stoi(pair.substr(dash + 1))});
+      }
+      catch (const std::exception&)
+      {
+        throw dem::InputError("Bonds/pairs: cannot read '" + pair + "' (expected 'i-j')");
+      }
+    }
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Damping");
+  c.run.bond_damping_ratio = prm.get_double("bond damping ratio");
+  c.run.particle_damping = prm.get_double("particle damping");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Simulation");
+  {
+    const std::string dt = prm.get("time step");
+    if (dt == "auto")
+      c.run.time_step = 0;
+    else
+    {
+      try
+      {
+        std::size_t used = 0;
+        c.run.time_step = std::stod(dt, &used);
+        if (used != dt.size())
+          throw std::invalid_argument(dt);
+      }
+      catch (const std::exception&)
+      {
+        throw dem::InputError("Simulation/time step: '" + dt + "' is neither 'auto' nor a number");
+      }
+      if (!(c.run.time_step > 0))
+        throw dem::InputError("Simulation/time step: must be positive or 'auto'");
+    }
+    c.run.safety = prm.get_double("time step safety");
+    c.run.end_time = prm.get_double("end time");
+    c.run.quasi_static_speed = prm.get_double("quasi-static speed");
+    c.run.max_steps = prm.get_integer("max steps");
+    c.run.threads = prm.get_integer("threads");
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Groups");
+  const auto group_names = split_names(prm.get("names"));
+  prm.leave_subsection();
+  for (const auto& name : group_names)
+  {
+    dem::GroupConfig g;
+    g.name = name;
+    const std::string where = "Group " + name;
+    prm.enter_subsection(where);
+    using GK = dem::GroupSelection::Kind;
+    const std::string sel = prm.get("select");
+    g.selection.kind = sel == "all" ? GK::all : sel == "index" ? GK::index : sel == "box" ? GK::box : GK::face;
+    for (const auto& s : dealii::Utilities::split_string_list(prm.get("indices"), ','))
+      g.selection.indices.push_back(std::stol(s));
+    if (g.selection.kind == GK::index && g.selection.indices.empty())
+      throw dem::InputError(where + "/indices: select = index needs at least one index");
+    g.selection.box_min = get_vec3(prm, "box min");
+    g.selection.box_max = get_vec3(prm, "box max");
+    std::tie(g.selection.face_axis, g.selection.face_upper) =
+        dem::parse_face(prm.get("face"), where + "/face");
+    g.selection.face_thickness = prm.get_double("face thickness");
+    g.fixed = dem::parse_dof_mask(prm.get("fixed"), where + "/fixed");
+    g.mass = prm.get_double("mass");
+    g.initial_velocity = get_vec3(prm, "initial velocity");
+    prm.leave_subsection();
+    c.groups.push_back(g);
+  }
+
+  prm.enter_subsection("Loads");
+  const auto load_names = split_names(prm.get("names"));
+  prm.leave_subsection();
+  for (const auto& name : load_names)
+  {
+    dem::LoadConfig lc;
+    const std::string where = "Load " + name;
+    prm.enter_subsection(where);
+    lc.load.name = name;
+    lc.group = prm.get("group");
+    if (lc.group.empty())
+      throw dem::InputError(where + "/group: a load needs a group");
+    const std::string type = prm.get("type");
+    lc.load.kind = type == "force"      ? dem::LoadKind::force
+                   : type == "moment"   ? dem::LoadKind::moment
+                   : type == "velocity" ? dem::LoadKind::velocity
+                                        : dem::LoadKind::angular_velocity;
+    lc.load.value = get_vec3(prm, "value");
+    lc.load.components = 0;
+    for (const auto& comp : dealii::Utilities::split_string_list(prm.get("components"), ','))
+      lc.load.components |= std::uint8_t(1u << (comp[0] - 'x'));
+    lc.load.ramp_time = prm.get_double("ramp time");
+    const std::string end = prm.get("end time");
+    if (end == "inf" || end == "never")
+      lc.load.end_time = std::numeric_limits<double>::infinity();
+    else
+    {
+      try
+      {
+        lc.load.end_time = std::stod(end);
+      }
+      catch (const std::exception&)
+      {
+        throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
+      }
+    }
+    prm.leave_subsection();
+    c.loads.push_back(lc);
+  }
+
+  prm.enter_subsection("Measurements");
+  c.measure.deflection_group = prm.get("deflection group");
+  c.measure.deflection_name = prm.get("deflection name");
+  c.measure.deflection_direction = get_vec3(prm, "deflection direction");
+  c.measure.frequency_group = prm.get("frequency group");
+  if (!(c.measure.deflection_direction.norm() > 0))
+    throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
+  prm.leave_subsection();
+  return c;
+}
+
+OutputSettings parse_output_settings(ParameterHandler& prm)
+{
+  OutputSettings o;
+  prm.enter_subsection("Output");
+  o.history_interval = prm.get_integer("history interval");
+  o.snapshot_interval = prm.get_integer("snapshot interval");
+  o.write_vtu = prm.get_bool("write vtu");
+  prm.leave_subsection();
+  return o;
+}
+} // namespace dembridge::app

@@ -1,0 +1,118 @@
+// dembridge: command-line front end.
+//   dembridge run CASE.prm [--set "Section/Key=value"]... [--output-dir DIR]
+//   dembridge print-parameters
+// The application only parses, builds and runs; physics lives in dem/ and fem/.
+#include "case_file.h"
+#include "dem_run.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/fem_case.h"
+#endif
+#include <CLI/CLI.hpp>
+#include <deal.II/base/mpi.h>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+/// Writes summary.json atomically (temporary file, then rename): a reader never sees half a
+/// summary, and a failed run leaves none.
+void write_summary(const fs::path& dir, const nlohmann::json& j)
+{
+  const fs::path tmp = dir / "summary.json.part";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << '\n';
+    if (!out)
+      throw std::runtime_error((dir / "summary.json").string() + ": cannot write");
+  }
+  fs::rename(tmp, dir / "summary.json");
+}
+
+int run(const std::string& case_file, const std::vector<std::string>& overrides,
+        std::string output_dir)
+{
+  const auto start = std::chrono::steady_clock::now();
+  auto prm = dembridge::app::read_case(case_file, overrides);
+  if (output_dir.empty())
+    output_dir = (fs::path("output") / fs::path(case_file).stem()).string();
+  const fs::path dir(output_dir);
+  fs::create_directories(dir);
+  fs::remove(dir / "summary.json"); // a stale summary must not survive a failed run
+  // Paths inside the case (particle files, meshes) are relative to the case file.
+  const fs::path case_dir = fs::absolute(case_file).parent_path();
+  nlohmann::json summary;
+  const std::string mode = prm->get("Mode");
+  const fs::path abs_dir = fs::absolute(dir);
+  const fs::path cwd = fs::current_path();
+  fs::current_path(case_dir);
+  try
+  {
+    if (mode == "dem")
+      summary = dembridge::app::run_dem_case(*prm, abs_dir);
+    else
+    {
+#ifdef DEMBRIDGE_HAVE_FEM
+      summary = dembridge::fem::run_case(*prm, abs_dir, MPI_COMM_WORLD);
+#else
+      throw std::runtime_error("Mode: this build has no FEM layer (deal.II not found)");
+#endif
+    }
+  }
+  catch (...)
+  {
+    fs::current_path(cwd);
+    throw;
+  }
+  fs::current_path(cwd);
+  summary["case"] = fs::path(case_file).filename().string();
+  summary["wall_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    write_summary(dir, summary);
+  std::cout << "dembridge: wrote " << (dir / "summary.json").string() << '\n';
+  return 0;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  CLI::App app{"dembridge: coupled DEM-FEM for bonded-particle models"};
+  app.require_subcommand(1);
+  std::string case_file, output_dir;
+  std::vector<std::string> overrides;
+  auto* run_cmd = app.add_subcommand("run", "Run a case file (.prm or .json)");
+  run_cmd->add_option("case", case_file, "Case file")->required();
+  run_cmd->add_option("--set", overrides, "Override a parameter: \"Section/Key=value\"");
+  run_cmd->add_option("--output-dir", output_dir, "Output folder (default output/CASE)");
+  auto* print_cmd = app.add_subcommand("print-parameters",
+                                       "Print every parameter with its default and documentation");
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return app.exit(e);
+  }
+  try
+  {
+    if (*print_cmd)
+    {
+      dealii::ParameterHandler prm;
+      dembridge::app::declare_all_parameters(prm, {"<name>"}, {"<name>"});
+      prm.print_parameters(std::cout, dealii::ParameterHandler::Text);
+      return 0;
+    }
+    return run(case_file, overrides, output_dir);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "dembridge: error: " << dembridge::app::one_line(e.what()) << std::endl;
+    return 1;
+  }
+}

@@ -1,0 +1,31 @@
+#pragma once
+// ParaView output of a bonded-particle state through deal.II's DataOutBase (no hand-written VTK):
+//  - particles: one vertex patch each, with radius, displacement, velocity, angular velocity,
+//    force, moment, group mask and coordination;
+//  - bonds: one line patch each (particle centre to particle centre), with normal force
+//    (tension positive), shear force, twisting moment, bending moment, the force vector and the
+//    bond state (0 intact, 1 broken).
+// Snapshots go to DIR/particles_NNNNNN.vtu and DIR/bonds_NNNNNN.vtu; the .pvd time series are
+// written by finish().
+#include "dem/bond_store.h"
+#include "dem/particle_store.h"
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dembridge::app
+{
+class ParticleVtuSeries
+{
+public:
+  explicit ParticleVtuSeries(std::filesystem::path dir) : dir_(std::move(dir)) {}
+  void write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step);
+  /// Writes particles.pvd and bonds.pvd listing every snapshot.
+  void finish() const;
+
+private:
+  std::filesystem::path dir_;
+  std::vector<std::pair<double, std::string>> particle_files_, bond_files_;
+};
+} // namespace dembridge::app
