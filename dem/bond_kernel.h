@@ -47,12 +47,15 @@ struct BondConstants
 struct BondResult
 {
   Vec3 Fc, Mc;       ///< contact force/couple on b (elastic + dashpot)
+  Vec3 Fd, Md;       ///< their dashpot parts
   Vec3 Fa, Ma, Fb, Mb; ///< particle resultants
   double strain_energy; ///< elastic energy stored in the bond, J
-  double dissipation_power; ///< dashpot power, W (>= 0)
+  Vec3 rac, rbc;         ///< contact point from the particle centres
 };
 
-/// Evaluates one bond. Inline: this is the hot loop body.
+/// Evaluates one bond. Inline: this is the hot loop body. Without dashpots the velocities are
+/// not read.
+template <bool dashpots = true>
 inline BondResult evaluate_bond(const BondKinematics& k, const BondConstants& c)
 {
   BondResult r;
@@ -71,18 +74,25 @@ inline BondResult evaluate_bond(const BondKinematics& k, const BondConstants& c)
 
   const Vec3 rac = (c.s * L) * e;
   const Vec3 rbc = ((c.s - 1.0) * L) * e;
-  const Vec3 vcr = (k.va + k.wa.cross(rac)) - (k.vb + k.wb.cross(rbc)); // eq. 6
-  const Vec3 wcr = k.wa - k.wb;                                         // eq. 7
-
-  r.Fc = (c.kn * dn) * e + c.ks * ds + c.ct * vcr;
-  r.Mc = (-c.ktor * tw) * e + c.kben * dth + c.cr * wcr;
+  r.Fc = (c.kn * dn) * e + c.ks * ds;
+  r.Mc = (-c.ktor * tw) * e + c.kben * dth;
+  if constexpr (dashpots)
+  {
+    const Vec3 vcr = (k.va + k.wa.cross(rac)) - (k.vb + k.wb.cross(rbc)); // eq. 6
+    const Vec3 wcr = k.wa - k.wb;                                         // eq. 7
+    r.Fd = c.ct * vcr;
+    r.Md = c.cr * wcr;
+    r.Fc += r.Fd;
+    r.Mc += r.Md;
+  }
+  r.rac = rac;
+  r.rbc = rbc;
   r.Fa = -r.Fc;
   r.Fb = r.Fc;
   r.Ma = -r.Mc + rac.cross(r.Fa);
   r.Mb = r.Mc + rbc.cross(r.Fb);
   r.strain_energy = 0.5 * (c.kn * dn * dn + c.ks * ds.squaredNorm() + c.ktor * tw * tw +
                            c.kben * dth.squaredNorm());
-  r.dissipation_power = c.ct * vcr.squaredNorm() + c.cr * wcr.squaredNorm();
   return r;
 }
 } // namespace dembridge::dem

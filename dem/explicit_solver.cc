@@ -38,6 +38,13 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     for (int i : groups_[g].members)
       p_.group_mask[i] |= 1u << g;
   partition_bonds();
+  for (std::size_t k = 0; k < b_.size(); ++k)
+    dashpots_ = dashpots_ || b_.damping_force[k] > 0 || b_.damping_moment[k] > 0;
+  if (dashpots_)
+  {
+    dashpot_force_.assign(p_.size(), Vec3::Zero());
+    dashpot_torque_.assign(p_.size(), Vec3::Zero());
+  }
   for (std::size_t i = 0; i < p_.size(); ++i) // energy present at the start (eq. 53)
     energy_.initial += 0.5 * p_.mass[i] * p_.velocity[i].squaredNorm() +
                        0.5 * p_.inertia[i] * p_.angular_velocity[i].squaredNorm();
@@ -105,31 +112,38 @@ void ExplicitSolver::partition_bonds()
   phases_[3].push_back(range_of(2 * T));
 }
 
-template <bool record>
-void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& dissipation,
-                                double& strain)
+template <bool record, bool dashpots>
+void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain)
 {
-  auto& x = p_.position;
-  auto& q = p_.orientation;
-  auto& v = p_.velocity;
-  auto& w = p_.angular_velocity;
-  auto& F = p_.force;
-  auto& M = p_.torque;
+  const Vec3* x = p_.position.data();
+  const Quat* q = p_.orientation.data();
+  const Vec3* v = p_.velocity.data();
+  const Vec3* w = p_.angular_velocity.data();
+  Vec3* F = p_.force.data();
+  Vec3* M = p_.torque.data();
+  Vec3* Fd = dashpot_force_.data();
+  Vec3* Md = dashpot_torque_.data();
   for (std::size_t k = begin; k < end; ++k)
   {
     if (b_.state[k] != BondState::intact)
       continue;
     const int ia = b_.a[k], ib = b_.b[k];
-    const BondResult r =
-        evaluate_bond({x[ia], x[ib], q[ia], q[ib], v[ia], v[ib], w[ia], w[ib]},
-                      {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k],
-                       b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
-                       b_.damping_moment[k]});
+    const BondResult r = evaluate_bond<dashpots>(
+        {x[ia], x[ib], q[ia], q[ib], v[ia], v[ib], w[ia], w[ib]},
+        {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k], b_.kben[k],
+         b_.contact_fraction[k], b_.damping_force[k], b_.damping_moment[k]});
     F[ia] += r.Fa;
     M[ia] += r.Ma;
     F[ib] += r.Fb;
     M[ib] += r.Mb;
-    dissipation += r.dissipation_power;
+    if constexpr (dashpots)
+    {
+      // dashpot resultants kept apart for their exact work (see integrate)
+      Fd[ia] -= r.Fd;
+      Fd[ib] += r.Fd;
+      Md[ia] += -r.Md - r.rac.cross(r.Fd);
+      Md[ib] += r.Md + r.rbc.cross(r.Fd);
+    }
     if constexpr (record)
     {
       strain += r.strain_energy;
@@ -139,20 +153,19 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& diss
   }
 }
 
-template <bool record>
+template <bool record, bool dashpots>
 void ExplicitSolver::compute_bond_forces()
 {
-  double dissipation = 0, strain = 0;
+  double strain = 0;
   for (int phase = 0; phase < 3; ++phase)
   {
     const auto& ranges = phases_[phase];
-#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : dissipation, strain)
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain)
     for (std::size_t r = 0; r < ranges.size(); ++r)
-      bond_range<record>(ranges[r].first, ranges[r].second, dissipation, strain);
+      bond_range<record, dashpots>(ranges[r].first, ranges[r].second, strain);
   }
   for (const auto& range : phases_[3])
-    bond_range<record>(range.first, range.second, dissipation, strain);
-  dashpot_work_ += dissipation * settings_.time_step; // thesis eq. 51
+    bond_range<record, dashpots>(range.first, range.second, strain);
   if constexpr (record)
     energy_.strain = strain;
 }
@@ -257,6 +270,15 @@ void ExplicitSolver::integrate()
           lead += damp * 0.5 * w1[k] * dt;
       }
     }
+    if (dashpots_)
+    {
+      // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
+      const Vec3& fd = dashpot_force_[i];
+      const Vec3& md = dashpot_torque_[i];
+      dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
+      if constexpr (record)
+        lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
+    }
     v[i] = v1;
     w[i] = w1;
     x[i] += dt * v1; // eq. 41
@@ -284,12 +306,20 @@ void ExplicitSolver::integrate()
       vmax2 = std::max(vmax2, v1.squaredNorm());
     }
   }
-  // Particle damping work: the running sum of d^n . (v^{n-1/2} + v^{n+1/2})/2 dt runs half a
+  // Damping work (particle damping and dashpots): the running sum of d^n . (v^{n-1/2} +
+  // v^{n+1/2})/2 dt runs half a
   // step ahead of t_n; the trapezoidal value at t_n drops the last half term ("lead").
-  particle_damping_work_ += dissipation;
+  damping_work_ += dissipation;
+  if (steps_ == 0)
+  {
+    // The balance starts at t_0 with the energy the leapfrog state holds there (shadow kinetic
+    // energy + strain); damping work before t_0 (the first half step) is not counted.
+    energy_.initial = kinetic + energy_.strain;
+    damping_work_ = lead;
+  }
   if constexpr (record)
   {
-    energy_.damping = dashpot_work_ + particle_damping_work_ - lead;
+    energy_.damping = damping_work_ - lead;
     energy_.kinetic = kinetic;
     max_speed_ = std::sqrt(vmax2);
   }
@@ -313,12 +343,17 @@ void ExplicitSolver::integrate()
 
 void ExplicitSolver::step(bool record)
 {
+  record = record || steps_ == 0; // the first step fixes the initial energy
   std::fill(p_.force.begin(), p_.force.end(), Vec3::Zero());
   std::fill(p_.torque.begin(), p_.torque.end(), Vec3::Zero());
-  if (record)
-    compute_bond_forces<true>();
+  if (dashpots_)
+  {
+    std::fill(dashpot_force_.begin(), dashpot_force_.end(), Vec3::Zero());
+    std::fill(dashpot_torque_.begin(), dashpot_torque_.end(), Vec3::Zero());
+    record ? compute_bond_forces<true, true>() : compute_bond_forces<false, true>();
+  }
   else
-    compute_bond_forces<false>();
+    record ? compute_bond_forces<true, false>() : compute_bond_forces<false, false>();
   apply_loads();
   if (record)
     integrate<true>();

@@ -58,10 +58,10 @@ public:
   double last_ramp_end() const;
 
 private:
-  template <bool record>
+  template <bool record, bool dashpots>
   void compute_bond_forces();
-  template <bool record>
-  void bond_range(std::size_t begin, std::size_t end, double& dissipation, double& strain);
+  template <bool record, bool dashpots>
+  void bond_range(std::size_t begin, std::size_t end, double& strain);
   void apply_loads();
   template <bool record>
   void integrate();
@@ -76,7 +76,9 @@ private:
   double time_ = 0;
   long steps_ = 0;
   EnergyBalance energy_;
-  double dashpot_work_ = 0, particle_damping_work_ = 0;
+  double damping_work_ = 0; ///< running damping work, half a step ahead (see integrate)
+  bool dashpots_ = false;   ///< any bond with a dashpot
+  std::vector<Vec3> dashpot_force_, dashpot_torque_; ///< dashpot resultants per particle
   double max_speed_ = 0;
   std::vector<int> constrained_;     ///< particles touched by any constraint or motion load
   std::vector<Vec3> constrained_v_;  ///< their velocity before the step (work of supports)

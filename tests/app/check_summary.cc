@@ -1,0 +1,59 @@
+// check_summary FILE KEY OP VALUE [TOL] ...
+// Asserts values of summary.json: OP is "near" (relative tolerance TOL), "lt" or "gt".
+// Nested keys use dots (energy.kinetic). Prints every comparison; exit 1 on any failure.
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+int main(int argc, char** argv)
+{
+  if (argc < 5)
+  {
+    std::cerr << "usage: check_summary FILE KEY near|lt|gt VALUE [TOL] ...\n";
+    return 2;
+  }
+  std::ifstream in(argv[1]);
+  if (!in)
+  {
+    std::cerr << argv[1] << ": cannot open\n";
+    return 1;
+  }
+  const nlohmann::json j = nlohmann::json::parse(in);
+  bool ok = true;
+  for (int a = 2; a < argc;)
+  {
+    const std::string key = argv[a], op = argv[a + 1];
+    const double value = std::stod(argv[a + 2]);
+    a += 3;
+    const nlohmann::json* node = &j;
+    std::stringstream path(key);
+    for (std::string part; std::getline(path, part, '.');)
+    {
+      if (!node->contains(part))
+      {
+        std::cerr << "FAIL " << key << ": missing\n";
+        return 1;
+      }
+      node = &(*node)[part];
+    }
+    const double got = node->get<double>();
+    bool pass;
+    if (op == "near")
+    {
+      const double tol = std::stod(argv[a++]);
+      pass = std::abs(got - value) <= tol * std::abs(value);
+      std::cout << (pass ? "ok   " : "FAIL ") << key << " = " << got << ", expected " << value
+                << " within " << tol * 100 << " % (error " << (got - value) / value * 100 << " %)\n";
+    }
+    else
+    {
+      pass = op == "lt" ? got < value : got > value;
+      std::cout << (pass ? "ok   " : "FAIL ") << key << " = " << got << " " << op << " " << value << "\n";
+    }
+    ok = ok && pass;
+  }
+  return ok ? 0 : 1;
+}
