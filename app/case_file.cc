@@ -74,7 +74,9 @@ void apply_override(dealii::ParameterHandler& prm, const std::string& text)
   }
   catch (const std::exception& e)
   {
-    throw std::runtime_error("--set " + path + ": " + one_line(e.what()));
+    const std::string msg =
+        std::regex_replace(one_line(e.what()), std::regex("Line <\\d+> of file <[^>]*>: "), "");
+    throw std::runtime_error("--set " + path + ": " + msg);
   }
 }
 

@@ -20,8 +20,8 @@ const List vector3(Double(), 3, 3);
 
 dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
 {
-  const auto v = dealii::Utilities::string_to_double(
-      dealii::Utilities::split_string_list(prm.get(key), ','));
+  const auto v =
+      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(prm.get(key), ','));
   return {v[0], v[1], v[2]};
 }
 
@@ -49,12 +49,16 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "a simple cubic / HCP lattice filling 'box size'.");
   prm.declare_entry("count", "2", Integer(1), "Number of particles of a row.");
   prm.declare_entry("radius", "0.01", Double(), "Particle radius (m), row and lattices.");
-  prm.declare_entry("radii", "", List(Double(), 0), "Per-particle radii of a row (m); overrides radius.");
-  prm.declare_entry("spacing", "0", Double(0), "Centre distance of a row (m); 0: neighbours touch.");
-  prm.declare_entry("origin", "0, 0, 0", vector3, "First particle centre of a row / lattice corner (m).");
+  prm.declare_entry("radii", "", List(Double(), 0),
+                    "Per-particle radii of a row (m); overrides radius.");
+  prm.declare_entry("spacing", "0", Double(0),
+                    "Centre distance of a row (m); 0: neighbours touch.");
+  prm.declare_entry("origin", "0, 0, 0", vector3,
+                    "First particle centre of a row / lattice corner (m).");
   prm.declare_entry("direction", "1, 0, 0", vector3, "Axis of a row.");
   prm.declare_entry("box size", "0.25, 0.1, 0.1", vector3, "Box filled by a lattice (m).");
-  prm.declare_entry("file", "", Anything(), "Particle CSV file (source = file), relative to the case file.");
+  prm.declare_entry("file", "", Anything(),
+                    "Particle CSV file (source = file), relative to the case file.");
   prm.declare_entry("density", "2500", Double(), "Particle density (kg/m^3).");
   prm.leave_subsection();
 
@@ -64,7 +68,8 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "timoshenko (TBBM).");
   prm.declare_entry("youngs modulus", "4e9", Double(), "Bond Young's modulus E_b (Pa).");
   prm.declare_entry("poisson ratio", "0.3", Double(), "Bond Poisson's ratio nu_b, in (-1, 0.5).");
-  prm.declare_entry("radius multiplier", "1", Double(), "Bond radius = multiplier x smaller particle radius.");
+  prm.declare_entry("radius multiplier", "1", Double(),
+                    "Bond radius = multiplier x smaller particle radius.");
   prm.declare_entry("contact radius multiplier", "1", Double(),
                     "Bond particles whose contact radii (multiplier x radius) touch or overlap.");
   prm.declare_entry("stiffness ratio", "0", Double(0),
@@ -76,8 +81,9 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.leave_subsection();
 
   prm.enter_subsection("Damping");
-  prm.declare_entry("bond damping ratio", "0", Double(0),
-                    "Damping ratio xi of the bond dashpots, scaled by coordination (thesis eq. 35-37).");
+  prm.declare_entry(
+      "bond damping ratio", "0", Double(0),
+      "Damping ratio xi of the bond dashpots, scaled by coordination (thesis eq. 35-37).");
   prm.declare_entry("particle damping", "0", Double(0, 0.999),
                     "Particle (local) damping gamma in [0, 1) (paper eq. 11-12).");
   prm.leave_subsection();
@@ -85,10 +91,12 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.enter_subsection("Simulation");
   prm.declare_entry("time step", "auto", Anything(),
                     "Time step (s), or 'auto' for 'time step safety' x the critical step.");
-  prm.declare_entry("time step safety", "0.8", Double(0, 1), "Fraction of the critical step used by 'auto'.");
+  prm.declare_entry("time step safety", "0.8", Double(0, 1),
+                    "Fraction of the critical step used by 'auto'.");
   prm.declare_entry("end time", "1", Double(0), "Simulated time (s).");
-  prm.declare_entry("quasi-static speed", "0", Double(0),
-                    "Stop after the load ramps once the largest particle speed is below this (m/s); 0: off.");
+  prm.declare_entry(
+      "quasi-static speed", "0", Double(0),
+      "Stop after the load ramps once the largest particle speed is below this (m/s); 0: off.");
   prm.declare_entry("max steps", "100000000", Integer(1), "Step limit.");
   prm.declare_entry("threads", "1", Integer(1, 256), "Threads for the force and update loops.");
   prm.leave_subsection();
@@ -103,13 +111,16 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.leave_subsection();
 
   prm.enter_subsection("Measurements");
-  prm.declare_entry("deflection group", "", Anything(), "Group whose mean displacement is the deflection.");
+  prm.declare_entry("deflection group", "", Anything(),
+                    "Group whose mean displacement is the deflection.");
   prm.declare_entry("deflection name", "deflection",
                     Selection("deflection|tip_deflection|midspan_deflection"),
                     "Key of the deflection in summary.json.");
-  prm.declare_entry("deflection direction", "0, 0, -1", vector3, "Deflection = mean displacement . direction.");
-  prm.declare_entry("frequency group", "", Anything(),
-                    "Group whose free vibration (after every load has ended) gives natural_frequency.");
+  prm.declare_entry("deflection direction", "0, 0, -1", vector3,
+                    "Deflection = mean displacement . direction.");
+  prm.declare_entry(
+      "frequency group", "", Anything(),
+      "Group whose free vibration (after every load has ended) gives natural_frequency.");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -131,7 +142,8 @@ void declare_group_parameters(ParameterHandler& prm, const std::vector<std::stri
                       "Particle indices (select = index); negative counts from the end.");
     prm.declare_entry("box min", "0, 0, 0", vector3, "Lower corner (m), select = box.");
     prm.declare_entry("box max", "0, 0, 0", vector3, "Upper corner (m), select = box.");
-    prm.declare_entry("face", "x-", Selection("x-|x+|y-|y+|z-|z+"), "Specimen face, select = face.");
+    prm.declare_entry("face", "x-", Selection("x-|x+|y-|y+|z-|z+"),
+                      "Specimen face, select = face.");
     prm.declare_entry("face thickness", "1.5", Double(0),
                       "Centres within thickness x radius of the face (thesis: 1.5).");
     prm.declare_entry("fixed", "", Anything(), "Held DOFs: any of ux, uy, uz, rx, ry, rz, or all.");
@@ -256,7 +268,10 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     prm.enter_subsection(where);
     using GK = dem::GroupSelection::Kind;
     const std::string sel = prm.get("select");
-    g.selection.kind = sel == "all" ? GK::all : sel == "index" ? GK::index : sel == "box" ? GK::box : GK::face;
+    g.selection.kind = sel == "all"     ? GK::all
+                       : sel == "index" ? GK::index
+                       : sel == "box"   ? GK::box
+                                        : GK::face;
     for (const auto& s : dealii::Utilities::split_string_list(prm.get("indices"), ','))
       g.selection.indices.push_back(std::stol(s));
     if (g.selection.kind == GK::index && g.selection.indices.empty())

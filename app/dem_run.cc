@@ -1,7 +1,7 @@
 #include "dem_run.h"
+#include "dem/run_explicit.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
-#include "dem/run_explicit.h"
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -11,7 +11,10 @@ namespace dembridge::app
 {
 namespace
 {
-nlohmann::json to_json(const dem::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json to_json(const dem::Vec3& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
 
 /// history.csv (one row per record), ParaView snapshots and console progress.
 class CaseObserver : public dem::RunObserver
@@ -57,8 +60,8 @@ public:
   {
     std::printf("[%5.1f%%] step %ld, t = %.4g s, %.3g steps/s, %.3g bond-updates/s, ETA %.0f s, "
                 "max speed %.3g m/s\n",
-                100 * fraction, s.steps(), s.time(), rate, rate * double(model_.bonds.size()),
-                eta, s.max_speed());
+                100 * fraction, s.steps(), s.time(), rate, rate * double(model_.bonds.size()), eta,
+                s.max_speed());
     std::fflush(stdout);
   }
 
@@ -115,9 +118,12 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   j["simulated_time"] = r.time;
   j["stop_reason"] = r.stop_reason;
   j["solver_seconds"] = r.wall_seconds;
-  j["bond_updates_per_second"] = r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
-  j["energy"] = {{"kinetic", r.energy.kinetic},   {"strain", r.energy.strain},
-                 {"damping", r.energy.damping},   {"external_work", r.energy.external},
+  j["bond_updates_per_second"] =
+      r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
+  j["energy"] = {{"kinetic", r.energy.kinetic},
+                 {"strain", r.energy.strain},
+                 {"damping", r.energy.damping},
+                 {"external_work", r.energy.external},
                  {"initial", r.energy.initial}};
   j["energy_balance_error"] = r.energy_balance_error;
   if (r.deflection)

@@ -8,8 +8,8 @@
 #include "fem/fem_case.h"
 #endif
 #include <CLI/CLI.hpp>
-#include <deal.II/base/mpi.h>
 #include <chrono>
+#include <deal.II/base/mpi.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>

@@ -1,6 +1,6 @@
 #include "particle_vtu.h"
-#include <deal.II/base/data_out_base.h>
 #include <cstdio>
+#include <deal.II/base/data_out_base.h>
 #include <fstream>
 
 namespace dembridge::app
@@ -9,9 +9,13 @@ namespace
 {
 using dealii::DataComponentInterpretation::component_is_part_of_vector;
 using dealii::DataComponentInterpretation::DataComponentInterpretation;
-using Ranges = std::vector<std::tuple<unsigned int, unsigned int, std::string, DataComponentInterpretation>>;
+using Ranges =
+    std::vector<std::tuple<unsigned int, unsigned int, std::string, DataComponentInterpretation>>;
 
-dealii::Point<3> point(const dem::Vec3& x) { return {x.x(), x.y(), x.z()}; }
+dealii::Point<3> point(const dem::Vec3& x)
+{
+  return {x.x(), x.y(), x.z()};
+}
 
 void put(dealii::Table<2, float>& data, unsigned& row, unsigned col, const dem::Vec3& v)
 {
@@ -21,7 +25,8 @@ void put(dealii::Table<2, float>& data, unsigned& row, unsigned col, const dem::
 }
 
 template <int dim>
-void write_file(const std::filesystem::path& file, const std::vector<dealii::DataOutBase::Patch<dim, 3>>& patches,
+void write_file(const std::filesystem::path& file,
+                const std::vector<dealii::DataOutBase::Patch<dim, 3>>& patches,
                 const std::vector<std::string>& names, const Ranges& ranges, double time, long step)
 {
   std::ofstream out(file);
@@ -32,16 +37,32 @@ void write_file(const std::filesystem::path& file, const std::vector<dealii::Dat
 }
 } // namespace
 
-void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step)
+void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time,
+                              long step)
 {
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
   // Particles
   {
-    const std::vector<std::string> names = {
-        "radius", "displacement", "displacement", "displacement", "velocity", "velocity", "velocity",
-        "angular_velocity", "angular_velocity", "angular_velocity", "force", "force", "force",
-        "moment", "moment", "moment", "group_mask", "coordination", "id"};
+    const std::vector<std::string> names = {"radius",
+                                            "displacement",
+                                            "displacement",
+                                            "displacement",
+                                            "velocity",
+                                            "velocity",
+                                            "velocity",
+                                            "angular_velocity",
+                                            "angular_velocity",
+                                            "angular_velocity",
+                                            "force",
+                                            "force",
+                                            "force",
+                                            "moment",
+                                            "moment",
+                                            "moment",
+                                            "group_mask",
+                                            "coordination",
+                                            "id"};
     Ranges ranges;
     for (unsigned first : {1u, 4u, 7u, 10u, 13u})
       ranges.emplace_back(first, first + 2, names[first], component_is_part_of_vector);
@@ -69,8 +90,9 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   }
   // Bonds
   {
-    const std::vector<std::string> names = {"normal_force", "shear_force", "twisting_moment",
-                                            "bending_moment", "force", "force", "force", "state"};
+    const std::vector<std::string> names = {"normal_force",   "shear_force", "twisting_moment",
+                                            "bending_moment", "force",       "force",
+                                            "force",          "state"};
     Ranges ranges = {{4, 6, "force", component_is_part_of_vector}};
     std::vector<dealii::DataOutBase::Patch<1, 3>> patches(b.size());
     for (std::size_t k = 0; k < b.size(); ++k)
@@ -105,8 +127,8 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
 
 void ParticleVtuSeries::finish() const
 {
-  for (const auto& [name, files] : {std::pair{"particles.pvd", &particle_files_},
-                                    std::pair{"bonds.pvd", &bond_files_}})
+  for (const auto& [name, files] :
+       {std::pair{"particles.pvd", &particle_files_}, std::pair{"bonds.pvd", &bond_files_}})
   {
     std::ofstream out(dir_ / name);
     dealii::DataOutBase::write_pvd_record(out, *files);

@@ -19,13 +19,15 @@ int main(int argc, char** argv)
 {
   CLI::App app{"dembridge-bench: bond-updates per second of the DEM core"};
   int threads = 1, steps = 300;
-  double radius = 2.5e-3;
+  double radius = 2.5e-3, damping = 0.05;
   std::string model_name = "timoshenko", json_file;
   app.add_option("--threads", threads, "Threads")->check(CLI::Range(1, 256));
   app.add_option("--steps", steps, "Time steps to time")->check(CLI::Range(1, 100000000));
   app.add_option("--radius", radius, "Particle radius (m)")->check(CLI::PositiveNumber);
   app.add_option("--model", model_name, "Bond model")
       ->check(CLI::IsMember({"parallel_bond", "euler_bernoulli", "timoshenko"}));
+  app.add_option("--damping", damping, "Bond dashpot damping ratio (0: no dashpots)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--json", json_file, "Also write the result to this file");
   CLI11_PARSE(app, argc, argv);
 
@@ -43,12 +45,12 @@ int main(int argc, char** argv)
   mat.poisson_ratio = 0.3;
   BondStore b;
   form_bonds(p, b, mat, 1.0);
-  assign_bond_damping(p, b, 0.05);
+  assign_bond_damping(p, b, damping);
   std::mt19937 rng(12345);
   std::normal_distribution<double> n01(0, 1);
   for (std::size_t i = 0; i < p.size(); ++i)
     p.velocity[i] = 1e-3 * Vec3(n01(rng), n01(rng), n01(rng));
-  const double dt = 0.8 * estimate_critical_time_step(p, b, 0.05).critical();
+  const double dt = 0.8 * estimate_critical_time_step(p, b, damping).critical();
   ExplicitSolver solver(p, b, {}, {}, {}, {dt, 0.0, threads});
   const double setup = std::chrono::duration<double>(clock::now() - t0).count();
 
@@ -63,6 +65,7 @@ int main(int argc, char** argv)
   nlohmann::json j;
   j["benchmark"] = "hcp_lattice_explicit";
   j["bond_model"] = model_name;
+  j["bond_damping_ratio"] = damping;
   j["n_particles"] = p.size();
   j["n_bonds"] = b.size();
   j["threads"] = threads;

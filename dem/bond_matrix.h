@@ -2,7 +2,8 @@
 // Bond stiffness as 12x12 matrices in the bond's local frame (x along a -> b), DOF order
 // [u_a, theta_a, u_b, theta_b]. Two independent constructions:
 //  - unified_bond_matrix: the linearised unified law, K = B^T D B with B mapping DOFs to
-//    (delta_n, delta_s, rotation a-b) at the contact point and D = diag(kn, ks, ks, ktor, kben, kben);
+//    (delta_n, delta_s, rotation a-b) at the contact point and D = diag(kn, ks, ks, ktor, kben,
+//    kben);
 //  - timoshenko_beam_matrix: the thesis' closed-form Timoshenko beam matrix (eq. 26-31,
 //    Przemieniecki), built from E_b, nu_b, r_b, L_b alone.
 // For the TBBM the two agree (tests/dem), which checks the unified kernel against the thesis.

@@ -29,8 +29,8 @@ void BondMaterial::validate(const std::string& section) const
   if (!(youngs_modulus > 0))
     fail("youngs modulus", "must be positive (got " + std::to_string(youngs_modulus) + " Pa)");
   if (!(poisson_ratio > -1.0 && poisson_ratio < 0.5))
-    fail("poisson ratio",
-         "must lie in (-1, 0.5) for an isotropic solid (got " + std::to_string(poisson_ratio) + ")");
+    fail("poisson ratio", "must lie in (-1, 0.5) for an isotropic solid (got " +
+                              std::to_string(poisson_ratio) + ")");
   if (!(radius_multiplier > 0))
     fail("radius multiplier", "must be positive (got " + std::to_string(radius_multiplier) + ")");
   if (stiffness_ratio < 0)
@@ -46,10 +46,10 @@ BondStiffness bond_stiffness(const BondMaterial& mat, double L, double ra, doubl
   BondStiffness k;
   k.radius = mat.radius_multiplier * std::min(ra, rb);
   const double r = k.radius;
-  const double A = pi * r * r;              // eq. 23
+  const double A = pi * r * r;                // eq. 23
   const double I = 0.25 * pi * r * r * r * r; // eq. 24
-  k.kn = E * A / L;                         // Table 9
-  k.kben = 0.25 * k.kn * r * r;             // Table 9
+  k.kn = E * A / L;                           // Table 9
+  k.kben = 0.25 * k.kn * r * r;               // Table 9
   switch (mat.model)
   {
   case BondModel::parallel_bond:
@@ -61,13 +61,13 @@ BondStiffness bond_stiffness(const BondMaterial& mat, double L, double ra, doubl
     }
     const double kappa = mat.stiffness_ratio > 0 ? mat.stiffness_ratio : 2.0 * (1.0 + nu); // eq. 8
     k.ks = k.kn / kappa;
-    k.ktor = 0.5 * k.ks * r * r;                           // Table 1 (= k̄_s J)
-    k.contact_fraction = 0.5 * (L + ra - rb) / L;          // Table 9
+    k.ktor = 0.5 * k.ks * r * r;                  // Table 1 (= k̄_s J)
+    k.contact_fraction = 0.5 * (L + ra - rb) / L; // Table 9
     break;
   }
   case BondModel::euler_bernoulli:
-    k.ks = 12.0 * E * I / (L * L * L);                     // eq. 26
-    k.ktor = 0.25 * k.kn * r * r / (1.0 + nu);             // Table 6
+    k.ks = 12.0 * E * I / (L * L * L);         // eq. 26
+    k.ktor = 0.25 * k.kn * r * r / (1.0 + nu); // Table 6
     break;
   case BondModel::timoshenko:
   {

@@ -9,7 +9,8 @@
 //   k_n   = E_b A_b / L_b                  all models (Table 9), A_b = pi r_b^2 (eq. 23)
 //   k_s   = k_n / kappa                    PBM (Table 1; kappa = 2 (1 + nu_b), eq. 8, by default)
 //         = 12 E_b I_b / L_b^3             EBBM (eq. 26)
-//         = 12 E_b I_b / (L_b^3 (1+Phi))   TBBM (eq. 18), Phi = 20 r_b^2 (1+nu_b) / (3 L_b^2) (eq. 25)
+//         = 12 E_b I_b / (L_b^3 (1+Phi))   TBBM (eq. 18), Phi = 20 r_b^2 (1+nu_b) / (3 L_b^2) (eq.
+//         25)
 //   k_tor = 0.5 k_s r_b^2                  PBM (Table 1)
 //         = 0.25 k_n r_b^2 / (1 + nu_b)    EBBM, TBBM (Table 6)
 //   k_ben = 0.25 k_n r_b^2                 all models
@@ -31,8 +32,8 @@ enum class BondModel : std::uint8_t
 
 /// The names a user types in a case file, in enum order. One registry gives the parser and the
 /// Patterns::Selection string.
-inline constexpr std::array<std::string_view, 3> bond_model_names = {{"parallel_bond",
-                                                                     "euler_bernoulli", "timoshenko"}};
+inline constexpr std::array<std::string_view, 3> bond_model_names = {
+    {"parallel_bond", "euler_bernoulli", "timoshenko"}};
 
 BondModel bond_model_from_name(std::string_view name);
 std::string bond_model_selection(); ///< "parallel_bond|euler_bernoulli|timoshenko"
@@ -41,10 +42,10 @@ std::string bond_model_selection(); ///< "parallel_bond|euler_bernoulli|timoshen
 struct BondMaterial
 {
   BondModel model = BondModel::timoshenko;
-  double youngs_modulus = 0.0;        ///< E_b, Pa
-  double poisson_ratio = 0.3;         ///< nu_b, in (-1, 0.5)
-  double radius_multiplier = 1.0;     ///< r_b = multiplier * min(R_a, R_b)
-  double stiffness_ratio = 0.0;       ///< PBM kappa = k_n/k_s; 0: 2 (1 + nu_b) (paper eq. 8)
+  double youngs_modulus = 0.0;            ///< E_b, Pa
+  double poisson_ratio = 0.3;             ///< nu_b, in (-1, 0.5)
+  double radius_multiplier = 1.0;         ///< r_b = multiplier * min(R_a, R_b)
+  double stiffness_ratio = 0.0;           ///< PBM kappa = k_n/k_s; 0: 2 (1 + nu_b) (paper eq. 8)
   double normal_stiffness_per_area = 0.0; ///< PBM k̄_n in Pa/m; 0: E_b / L_b
 
   /// Throws InputError naming `section` if a value is non-physical.

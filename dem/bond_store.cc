@@ -2,8 +2,8 @@
 
 namespace dembridge::dem
 {
-void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis,
-                    BondModel m, const BondStiffness& k)
+void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis, BondModel m,
+                    const BondStiffness& k)
 {
   a.push_back(ia);
   b.push_back(ib);

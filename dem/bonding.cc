@@ -25,8 +25,7 @@ void add_bond(ParticleStore& p, BondStore& bonds, const BondMaterial& mat, int i
   ++p.coordination[j];
 }
 
-std::size_t form_bonds(ParticleStore& p, BondStore& bonds, const BondMaterial& mat,
-                       double eta)
+std::size_t form_bonds(ParticleStore& p, BondStore& bonds, const BondMaterial& mat, double eta)
 {
   if (!(eta > 0))
     throw InputError("Bonds/contact radius multiplier: must be positive");
@@ -63,9 +62,10 @@ void assign_bond_damping(const ParticleStore& p, BondStore& bonds, double xi)
     const double mred = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
     const double ired = p.inertia[i] * p.inertia[j] / (p.inertia[i] + p.inertia[j]);
     const double C = 0.5 * (p.coordination[i] + p.coordination[j]);
-    const double scale = 1.0 / std::sqrt(std::max(C, 1.0) / 3.0); // eq. 37
-    bonds.damping_force[k] = xi * 2.0 * std::sqrt(bonds.kn[k] * mred) * scale;             // eq. 36
-    bonds.damping_moment[k] = xi * 2.0 * std::sqrt(2.0 * bonds.ktor[k] * ired) * scale; // paper eq. 10
+    const double scale = 1.0 / std::sqrt(std::max(C, 1.0) / 3.0);              // eq. 37
+    bonds.damping_force[k] = xi * 2.0 * std::sqrt(bonds.kn[k] * mred) * scale; // eq. 36
+    bonds.damping_moment[k] =
+        xi * 2.0 * std::sqrt(2.0 * bonds.ktor[k] * ired) * scale; // paper eq. 10
   }
 }
 } // namespace dembridge::dem

@@ -20,10 +20,10 @@ struct ParticleSource
     hcp    ///< hexagonal close packing filling `box_size`
   } kind = Kind::row;
   int count = 2;
-  double radius = 0.01;        ///< m
-  std::vector<double> radii;   ///< per particle (row), overrides radius
-  double spacing = 0;          ///< m, centre distance (row); 0: neighbours touch
-  Vec3 origin = Vec3::Zero();  ///< m
+  double radius = 0.01;       ///< m
+  std::vector<double> radii;  ///< per particle (row), overrides radius
+  double spacing = 0;         ///< m, centre distance (row); 0: neighbours touch
+  Vec3 origin = Vec3::Zero(); ///< m
   Vec3 direction = Vec3::UnitX();
   Vec3 box_size = Vec3(0.25, 0.1, 0.1); ///< m (lattices)
   std::string file;
@@ -34,8 +34,8 @@ struct GroupConfig
 {
   std::string name;
   GroupSelection selection;
-  std::uint8_t fixed = 0;         ///< DofBit mask held at zero velocity
-  double mass = 0;                ///< kg per particle; 0 keeps density * volume
+  std::uint8_t fixed = 0; ///< DofBit mask held at zero velocity
+  double mass = 0;        ///< kg per particle; 0 keeps density * volume
   Vec3 initial_velocity = Vec3::Zero();
 };
 
@@ -48,28 +48,28 @@ struct LoadConfig
 struct BondConfig
 {
   BondMaterial material;
-  double contact_radius_multiplier = 1.0; ///< eta_r
+  double contact_radius_multiplier = 1.0;          ///< eta_r
   std::vector<std::pair<int, int>> explicit_bonds; ///< if non-empty: these bonds only
 };
 
 struct RunConfig
 {
-  double time_step = 0;           ///< s; 0: automatic (safety * critical)
-  double safety = 0.8;            ///< fraction of the critical step used by "auto"
-  double end_time = 1.0;          ///< s
-  double quasi_static_speed = 0;  ///< m/s; >0: stop after the ramps once max speed < this
+  double time_step = 0;          ///< s; 0: automatic (safety * critical)
+  double safety = 0.8;           ///< fraction of the critical step used by "auto"
+  double end_time = 1.0;         ///< s
+  double quasi_static_speed = 0; ///< m/s; >0: stop after the ramps once max speed < this
   long max_steps = 100000000;
   int threads = 1;
-  double bond_damping_ratio = 0;  ///< xi (thesis eq. 37)
-  double particle_damping = 0;    ///< gamma (paper eq. 11-12)
+  double bond_damping_ratio = 0; ///< xi (thesis eq. 37)
+  double particle_damping = 0;   ///< gamma (paper eq. 11-12)
 };
 
 struct MeasureConfig
 {
-  std::string deflection_group;             ///< empty: none
+  std::string deflection_group;               ///< empty: none
   std::string deflection_name = "deflection"; ///< summary key, e.g. tip_deflection
   Vec3 deflection_direction = -Vec3::UnitZ(); ///< deflection = mean displacement . direction
-  std::string frequency_group;              ///< empty: none; free vibration after all loads end
+  std::string frequency_group;                ///< empty: none; free vibration after all loads end
 };
 
 struct CaseConfig

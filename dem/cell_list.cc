@@ -22,8 +22,9 @@ CellList::CellList(const std::vector<Vec3>& x, double cell_size) : h_(cell_size)
   for (int d = 0; d < 3; ++d)
     n_[d] = std::max<long>(1, long(std::floor((hi[d] - lo[d]) / h_)) + 1);
   if (double(n_[0]) * n_[1] * n_[2] > 4.0 * x.size() + 1e6)
-    throw InputError("cell list: the particles are spread too far apart for their size (more than " +
-                     std::to_string(long(4.0 * x.size() + 1e6)) + " cells)");
+    throw InputError(
+        "cell list: the particles are spread too far apart for their size (more than " +
+        std::to_string(long(4.0 * x.size() + 1e6)) + " cells)");
   const long ncell = n_[0] * n_[1] * n_[2];
   cell_start_.assign(ncell + 1, 0);
   for (const auto& p : x)

@@ -123,38 +123,31 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   Vec3* M = p_.torque.data();
   Vec3* Fd = dashpot_force_.data();
   Vec3* Md = dashpot_torque_.data();
+  BondForces f;
   for (std::size_t k = begin; k < end; ++k)
   {
     if (b_.state[k] != BondState::intact)
       continue;
     const int ia = b_.a[k], ib = b_.b[k];
-    const BondResult r = evaluate_bond<dashpots>(
-        {x[ia], x[ib], q[ia], q[ib], v[ia], v[ib], w[ia], w[ib]},
-        {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k], b_.kben[k],
-         b_.contact_fraction[k], b_.damping_force[k], b_.damping_moment[k]});
-    F[ia] += r.Fa;
-    M[ia] += r.Ma;
-    F[ib] += r.Fb;
-    M[ib] += r.Mb;
-    if constexpr (dashpots)
-    {
-      // dashpot resultants kept apart for their exact work (see integrate)
-      Fd[ia] -= r.Fd;
-      Fd[ib] += r.Fd;
-      Md[ia] += -r.Md - r.rac.cross(r.Fd);
-      Md[ib] += r.Md + r.rbc.cross(r.Fd);
-    }
+    bond_law<dashpots>(x[ia].data(), x[ib].data(), q[ia].coeffs().data(), q[ib].coeffs().data(),
+                       v[ia].data(), v[ib].data(), w[ia].data(), w[ib].data(),
+                       {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k],
+                        b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
+                        b_.damping_moment[k]},
+                       f);
+    bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
+    if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
+      bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
     if constexpr (record)
     {
-      strain += r.strain_energy;
-      b_.force[k] = r.Fc;
-      b_.moment[k] = r.Mc;
+      strain += f.strain_energy;
+      b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+      b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
     }
   }
 }
 
-template <bool record, bool dashpots>
-void ExplicitSolver::compute_bond_forces()
+template <bool record, bool dashpots> void ExplicitSolver::compute_bond_forces()
 {
   double strain = 0;
   for (int phase = 0; phase < 3; ++phase)
@@ -214,15 +207,13 @@ void ExplicitSolver::apply_loads()
       for (int i : members)
       {
         (moment ? p_.torque[i] : p_.force[i]) += share;
-        energy_.external +=
-            dt * mean_share.dot(moment ? p_.angular_velocity[i] : p_.velocity[i]);
+        energy_.external += dt * mean_share.dot(moment ? p_.angular_velocity[i] : p_.velocity[i]);
       }
     }
   }
 }
 
-template <bool record>
-void ExplicitSolver::integrate()
+template <bool record> void ExplicitSolver::integrate()
 {
   const double dt = settings_.time_step, gamma = settings_.particle_damping;
   const std::size_t n = p_.size();
@@ -240,36 +231,45 @@ void ExplicitSolver::integrate()
     const std::uint8_t mask = p_.dof_mask[i];
     const Vec3 v0 = v[i], w0 = w[i];
     Vec3 v1, w1;
-    for (int k = 0; k < 3; ++k)
+    if (mask == 0 && gamma == 0)
     {
-      // translations (eq. 40) and rotations (eq. 44); particle damping (paper eq. 11-12)
-      if (mask & (1u << k))
-      {
-        v1[k] = p_.prescribed_velocity[i][k];
-        F[i][k] = m * (v1[k] - v0[k]) / dt - F[i][k]; // support reaction
-      }
-      else
-      {
-        const double damp = gamma * std::abs(F[i][k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
-        v1[k] = v0[k] + dt * (F[i][k] - damp) / m;
-        dissipation += damp * 0.5 * (v0[k] + v1[k]) * dt;
-        if constexpr (record)
-          lead += damp * 0.5 * v1[k] * dt;
-      }
-      if (mask & (1u << (k + 3)))
-      {
-        w1[k] = p_.prescribed_angular_velocity[i][k];
-        M[i][k] = I * (w1[k] - w0[k]) / dt - M[i][k];
-      }
-      else
-      {
-        const double damp = gamma * std::abs(M[i][k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
-        w1[k] = w0[k] + dt * (M[i][k] - damp) / I;
-        dissipation += damp * 0.5 * (w0[k] + w1[k]) * dt;
-        if constexpr (record)
-          lead += damp * 0.5 * w1[k] * dt;
-      }
+      // the common case, kept branch-free: eq. 40 and eq. 44
+      v1 = v0 + (dt / m) * F[i];
+      w1 = w0 + (dt / I) * M[i];
     }
+    else
+      for (int k = 0; k < 3; ++k)
+      {
+        // translations (eq. 40) and rotations (eq. 44); particle damping (paper eq. 11-12)
+        if (mask & (1u << k))
+        {
+          v1[k] = p_.prescribed_velocity[i][k];
+          F[i][k] = m * (v1[k] - v0[k]) / dt - F[i][k]; // support reaction
+        }
+        else
+        {
+          const double damp =
+              gamma * std::abs(F[i][k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
+          v1[k] = v0[k] + dt * (F[i][k] - damp) / m;
+          dissipation += damp * 0.5 * (v0[k] + v1[k]) * dt;
+          if constexpr (record)
+            lead += damp * 0.5 * v1[k] * dt;
+        }
+        if (mask & (1u << (k + 3)))
+        {
+          w1[k] = p_.prescribed_angular_velocity[i][k];
+          M[i][k] = I * (w1[k] - w0[k]) / dt - M[i][k];
+        }
+        else
+        {
+          const double damp =
+              gamma * std::abs(M[i][k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
+          w1[k] = w0[k] + dt * (M[i][k] - damp) / I;
+          dissipation += damp * 0.5 * (w0[k] + w1[k]) * dt;
+          if constexpr (record)
+            lead += damp * 0.5 * w1[k] * dt;
+        }
+      }
     if (dashpots_)
     {
       // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
@@ -333,8 +333,7 @@ void ExplicitSolver::integrate()
       const double R = mask & (1u << k) ? F[i][k] : 0.0;
       const double Rm = mask & (1u << (k + 3)) ? M[i][k] : 0.0;
       energy_.external += 0.5 * (constrained_reaction_[c][k] + R) * constrained_v_[c][k] * dt;
-      energy_.external +=
-          0.5 * (constrained_reaction_[c][k + 3] + Rm) * constrained_w_[c][k] * dt;
+      energy_.external += 0.5 * (constrained_reaction_[c][k + 3] + Rm) * constrained_w_[c][k] * dt;
       constrained_reaction_[c][k] = R;
       constrained_reaction_[c][k + 3] = Rm;
     }

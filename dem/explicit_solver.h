@@ -58,13 +58,11 @@ public:
   double last_ramp_end() const;
 
 private:
-  template <bool record, bool dashpots>
-  void compute_bond_forces();
+  template <bool record, bool dashpots> void compute_bond_forces();
   template <bool record, bool dashpots>
   void bond_range(std::size_t begin, std::size_t end, double& strain);
   void apply_loads();
-  template <bool record>
-  void integrate();
+  template <bool record> void integrate();
   void partition_bonds();
 
   ParticleStore& p_;
@@ -80,8 +78,8 @@ private:
   bool dashpots_ = false;   ///< any bond with a dashpot
   std::vector<Vec3> dashpot_force_, dashpot_torque_; ///< dashpot resultants per particle
   double max_speed_ = 0;
-  std::vector<int> constrained_;     ///< particles touched by any constraint or motion load
-  std::vector<Vec3> constrained_v_;  ///< their velocity before the step (work of supports)
+  std::vector<int> constrained_;    ///< particles touched by any constraint or motion load
+  std::vector<Vec3> constrained_v_; ///< their velocity before the step (work of supports)
   std::vector<Vec3> constrained_w_;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vector6> constrained_reaction_; ///< support reactions of the previous step

@@ -24,7 +24,7 @@ struct GroupSelection
   } kind = Kind::all;
   std::vector<long> indices;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
-  int face_axis = 0;      ///< 0, 1, 2
+  int face_axis = 0;       ///< 0, 1, 2
   bool face_upper = false; ///< true: the + face
   double face_thickness = 1.5;
 };

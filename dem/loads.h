@@ -30,9 +30,9 @@ struct Load
   std::string name;
   int group = 0;
   LoadKind kind = LoadKind::force;
-  Vec3 value = Vec3::Zero();     ///< N, N·m (group total) or m/s, rad/s (per particle)
-  std::uint8_t components = 7;   ///< prescribed components (bits x, y, z) for velocities
-  double ramp_time = 0.0;        ///< s
+  Vec3 value = Vec3::Zero();   ///< N, N·m (group total) or m/s, rad/s (per particle)
+  std::uint8_t components = 7; ///< prescribed components (bits x, y, z) for velocities
+  double ramp_time = 0.0;      ///< s
   double end_time = std::numeric_limits<double>::infinity(); ///< s
 
   /// Fraction of the full value at time t (0 after end_time).

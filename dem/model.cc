@@ -13,8 +13,8 @@ int Model::group_index(const std::string& name, const std::string& where) const
   std::string known;
   for (const auto& g : groups)
     known += (known.empty() ? "" : ", ") + g.name;
-  throw InputError(where + ": no group named '" + name + "' (groups: " +
-                   (known.empty() ? "none" : known) + ")");
+  throw InputError(where + ": no group named '" + name +
+                   "' (groups: " + (known.empty() ? "none" : known) + ")");
 }
 
 Model build_model(const CaseConfig& c)
@@ -74,16 +74,15 @@ Model build_model(const CaseConfig& c)
   }
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
-  m.critical = estimate_critical_time_step(p, m.bonds, c.run.bond_damping_ratio,
-                                           c.run.particle_damping);
+  m.critical =
+      estimate_critical_time_step(p, m.bonds, c.run.bond_damping_ratio, c.run.particle_damping);
   if (c.run.time_step > 0)
   {
     if (c.run.time_step > m.critical.critical())
     {
       std::ostringstream s;
-      s << "Simulation/time step: " << c.run.time_step
-        << " s is above the stability limit " << m.critical.critical()
-        << " s of this bond network (use 'auto' or a smaller step)";
+      s << "Simulation/time step: " << c.run.time_step << " s is above the stability limit "
+        << m.critical.critical() << " s of this bond network (use 'auto' or a smaller step)";
       throw InputError(s.str());
     }
     m.time_step = c.run.time_step;

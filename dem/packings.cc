@@ -22,8 +22,7 @@ void lattice(const ParticleSource& s, ParticleStore& p, bool hcp)
     if (s.box_size[d] < 2 * r)
       throw InputError("Particles/box size: the box (" + std::to_string(s.box_size[d]) +
                        " m along axis " + std::to_string(d) +
-                       ") is smaller than one particle diameter (" + std::to_string(2 * r) +
-                       " m)");
+                       ") is smaller than one particle diameter (" + std::to_string(2 * r) + " m)");
   const double dx = 2 * r;
   const double dy = hcp ? std::sqrt(3.0) * r : 2 * r;
   const double dz = hcp ? 2.0 * std::sqrt(2.0 / 3.0) * r : 2 * r;
@@ -94,8 +93,8 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     if (s.count < 1)
       throw InputError("Particles/count: a row needs at least one particle");
     if (!s.radii.empty() && int(s.radii.size()) != s.count)
-      throw InputError("Particles/radii: " + std::to_string(s.radii.size()) +
-                       " radii given for " + std::to_string(s.count) + " particles");
+      throw InputError("Particles/radii: " + std::to_string(s.radii.size()) + " radii given for " +
+                       std::to_string(s.count) + " particles");
     if (!(s.direction.norm() > 0))
       throw InputError("Particles/direction: must be a non-zero vector");
     const Vec3 dir = s.direction.normalized();

@@ -29,8 +29,8 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  ExplicitSolver solver(model.particles, model.bonds, model.groups, model.constraints,
-                        model.loads, {model.time_step, c.run.particle_damping, c.run.threads});
+  ExplicitSolver solver(model.particles, model.bonds, model.groups, model.constraints, model.loads,
+                        {model.time_step, c.run.particle_damping, c.run.threads});
   RunResult res;
   const int deflection_group =
       c.measure.deflection_group.empty()
@@ -96,8 +96,8 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     }
     if (!std::isfinite(solver.energy().damping) || !std::isfinite(solver.energy().external))
       throw std::runtime_error("the simulation became unstable at step " +
-                               std::to_string(solver.steps()) + " (t = " +
-                               std::to_string(solver.time()) + " s): non-finite energy");
+                               std::to_string(solver.steps()) +
+                               " (t = " + std::to_string(solver.time()) + " s): non-finite energy");
     const auto now = clock::now();
     if (std::chrono::duration<double>(now - last_progress).count() > sched.progress_seconds)
     {

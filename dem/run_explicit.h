@@ -25,9 +25,9 @@ public:
 
 struct RunSchedule
 {
-  long record_interval = 100;   ///< steps between history records
-  long snapshot_interval = 0;   ///< steps between snapshots; 0: first and last only
-  double progress_seconds = 2;  ///< wall time between progress reports
+  long record_interval = 100;  ///< steps between history records
+  long snapshot_interval = 0;  ///< steps between snapshots; 0: first and last only
+  double progress_seconds = 2; ///< wall time between progress reports
 };
 
 struct RunResult

@@ -12,7 +12,8 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
                                              double xi, double gamma)
 {
   TimeStepEstimate est;
-  double dt_min = std::numeric_limits<double>::infinity(), eq48 = std::numeric_limits<double>::infinity();
+  double dt_min = std::numeric_limits<double>::infinity(),
+         eq48 = std::numeric_limits<double>::infinity();
   // Regular packings repeat a few bond signatures: cache eigenvalues per signature.
   std::map<std::array<double, 10>, double> cache;
   for (std::size_t k = 0; k < bonds.size(); ++k)
@@ -22,10 +23,16 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
     const int a = bonds.a[k], b = bonds.b[k];
     eq48 = std::min(eq48, 0.22 * std::sqrt(std::min(p.mass[a], p.mass[b]) / bonds.kn[k]));
     const double ca = std::max(1, p.coordination[a]), cb = std::max(1, p.coordination[b]);
-    const std::array<double, 10> key = {bonds.kn[k],         bonds.ks[k],   bonds.ktor[k],
-                                        bonds.kben[k],       bonds.contact_fraction[k],
-                                        bonds.rest_length[k], p.mass[a] / ca, p.inertia[a] / ca,
-                                        p.mass[b] / cb,      p.inertia[b] / cb};
+    const std::array<double, 10> key = {bonds.kn[k],
+                                        bonds.ks[k],
+                                        bonds.ktor[k],
+                                        bonds.kben[k],
+                                        bonds.contact_fraction[k],
+                                        bonds.rest_length[k],
+                                        p.mass[a] / ca,
+                                        p.inertia[a] / ca,
+                                        p.mass[b] / cb,
+                                        p.inertia[b] / cb};
     auto it = cache.find(key);
     double lam;
     if (it != cache.end())

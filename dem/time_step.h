@@ -17,8 +17,8 @@ namespace dembridge::dem
 {
 struct TimeStepEstimate
 {
-  double thesis_eq48 = 0;  ///< s, 0.22 sqrt(m/k) (translations only)
-  double bond_bound = 0;   ///< s, element eigenvalue bound incl. rotations and damping
+  double thesis_eq48 = 0; ///< s, 0.22 sqrt(m/k) (translations only)
+  double bond_bound = 0;  ///< s, element eigenvalue bound incl. rotations and damping
   double critical() const { return bond_bound; }
 };
 

@@ -46,12 +46,14 @@ int main(int argc, char** argv)
       const double tol = std::stod(argv[a++]);
       pass = std::abs(got - value) <= tol * std::abs(value);
       std::cout << (pass ? "ok   " : "FAIL ") << key << " = " << got << ", expected " << value
-                << " within " << tol * 100 << " % (error " << (got - value) / value * 100 << " %)\n";
+                << " within " << tol * 100 << " % (error " << (got - value) / value * 100
+                << " %)\n";
     }
     else
     {
       pass = op == "lt" ? got < value : got > value;
-      std::cout << (pass ? "ok   " : "FAIL ") << key << " = " << got << " " << op << " " << value << "\n";
+      std::cout << (pass ? "ok   " : "FAIL ") << key << " = " << got << " " << op << " " << value
+                << "\n";
     }
     ok = ok && pass;
   }

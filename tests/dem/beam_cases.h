@@ -11,9 +11,18 @@ namespace dembridge::test
 {
 using namespace dembridge::dem;
 
-inline double area(double r) { return std::numbers::pi * r * r; }
-inline double second_moment(double r) { return 0.25 * std::numbers::pi * std::pow(r, 4); }
-inline double shear_modulus(double E, double nu) { return E / (2.0 * (1.0 + nu)); }
+inline double area(double r)
+{
+  return std::numbers::pi * r * r;
+}
+inline double second_moment(double r)
+{
+  return 0.25 * std::numbers::pi * std::pow(r, 4);
+}
+inline double shear_modulus(double E, double nu)
+{
+  return E / (2.0 * (1.0 + nu));
+}
 constexpr double form_factor_circle = 10.0 / 9.0;
 
 /// Thesis eq. B1: midspan deflection of a simply supported Timoshenko beam, central load F.

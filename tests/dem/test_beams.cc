@@ -19,8 +19,8 @@ RunResult run(const CaseConfig& c)
 void report(const std::string& what, double got, double expected, const RunResult& r)
 {
   std::cout << what << ": " << got << " vs " << expected << " (rel. error "
-            << (got - expected) / expected << "), " << r.steps << " steps, stop: "
-            << r.stop_reason << ", energy balance error " << r.energy_balance_error << "\n";
+            << (got - expected) / expected << "), " << r.steps << " steps, stop: " << r.stop_reason
+            << ", energy balance error " << r.energy_balance_error << "\n";
 }
 } // namespace
 
@@ -113,8 +113,7 @@ TEST(CantileverCase5, TimoshenkoIsInsensitiveToPolydispersity)
   const double expected = cantilever_timoshenko(1e5, 4, 200e9, 0.3, 0.2);
   for (double factor : {1.0, 2.0, 4.0})
   {
-    const RunResult r =
-        run(cantilever(BondModel::timoshenko, 2, 4.0, {0.2, 0.2 * factor, 0.2}));
+    const RunResult r = run(cantilever(BondModel::timoshenko, 2, 4.0, {0.2, 0.2 * factor, 0.2}));
     report("case 5 TBBM middle x" + std::to_string(factor), *r.deflection, expected, r);
     EXPECT_NEAR(*r.deflection / expected, 1.0, 1e-3);
     EXPECT_LT(r.energy_balance_error, 0.01);

@@ -40,7 +40,10 @@ struct Pair
   }
 };
 
-Quat rotation(double angle, Vec3 axis) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
+Quat rotation(double angle, Vec3 axis)
+{
+  return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
+}
 
 double scale(const BondResult& r, const BondConstants& c)
 {
