@@ -4,6 +4,7 @@
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "dem_run.h"
+#include "dem/types.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
@@ -61,6 +62,12 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
       throw std::runtime_error("Mode: this build has no FEM layer (deal.II not found)");
 #endif
     }
+  }
+  catch (const dembridge::dem::InputError& e)
+  {
+    // name the file: the message already names the key and the reason
+    fs::current_path(cwd);
+    throw std::runtime_error(fs::path(case_file).filename().string() + ": " + e.what());
   }
   catch (...)
   {

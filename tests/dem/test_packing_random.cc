@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <iostream>
+#include <numbers>
 
 using namespace dembridge::dem;
 using Dist = RandomPackingSettings::Distribution;
@@ -164,7 +165,9 @@ TEST_P(Polydisperse, RadiiInBoundsAndDense)
 }
 INSTANTIATE_TEST_SUITE_P(Distributions, Polydisperse,
                          ::testing::Values(std::make_pair(Dist::uniform, 0.2),
-                                           std::make_pair(Dist::normal, 0.1)));
+                                           std::make_pair(Dist::normal, 0.1)),
+                         [](const auto& info)
+                         { return info.param.first == Dist::uniform ? "uniform" : "normal"; });
 
 // A target porosity above the jamming porosity is reached exactly with the drawn radii.
 TEST(RandomPacking, LooseTargetIsReached)
@@ -177,7 +180,7 @@ TEST(RandomPacking, LooseTargetIsReached)
   EXPECT_EQ(rep.radius_scale, 1.0);
   EXPECT_EQ(rep.removed, 0u);
   // The count is rounded to the nearest sphere: within half a sphere volume of the target.
-  const double half_sphere = 0.5 * 4.0 / 3.0 * M_PI * 1e-6 / specimen.prod();
+  const double half_sphere = 0.5 * 4.0 / 3.0 * std::numbers::pi * 1e-6 / specimen.prod();
   EXPECT_NEAR(rep.porosity, 0.5, half_sphere);
   EXPECT_LT(max_overlap(p), 1e-3);
 }

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Runs the DEM core benchmark with 1 and 2 threads and collects the JSON figures in
+# bench/results/. Run on an otherwise idle machine: the numbers are wall-clock throughput.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+exe="$here/build/bench/dembridge-bench"
+[ -x "$exe" ] || { echo "build first: bash scripts/setup.sh" >&2; exit 1; }
+mkdir -p "$here/bench/results"
+for threads in 1 2; do
+  for damping in 0.05 0; do
+    out="$here/bench/results/hcp_r2.5mm_threads${threads}_damping${damping}.json"
+    "$exe" --threads "$threads" --damping "$damping" --steps 500 --json "$out"
+  done
+done
