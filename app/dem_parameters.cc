@@ -44,9 +44,9 @@ std::vector<std::string> split_names(const std::string& text)
 void declare_dem_parameters(ParameterHandler& prm)
 {
   prm.enter_subsection("Particles");
-  prm.declare_entry("source", "row", Selection("row|file|cubic|hcp"),
-                    "Where the spheres come from: a row (beams), a CSV file 'x, y, z, r' (m), or "
-                    "a simple cubic / HCP lattice filling 'box size'.");
+  prm.declare_entry("source", "row", Selection("row|file|cubic|hcp|random"),
+                    "Where the spheres come from: a row (beams), a CSV file 'x, y, z, r' (m), a "
+                    "simple cubic / HCP lattice or a random close packing filling 'box size'.");
   prm.declare_entry("count", "2", Integer(1), "Number of particles of a row.");
   prm.declare_entry("radius", "0.01", Double(), "Particle radius (m), row and lattices.");
   prm.declare_entry("radii", "", List(Double(), 0),
@@ -60,6 +60,15 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("file", "", Anything(),
                     "Particle CSV file (source = file), relative to the case file.");
   prm.declare_entry("density", "2500", Double(), "Particle density (kg/m^3).");
+  prm.declare_entry("distribution", "mono", Selection("mono|uniform|normal"),
+                    "Radius distribution of a random packing (mean = radius).");
+  prm.declare_entry("radius spread", "0", Double(0),
+                    "Random packing: uniform half-width / mean, or normal std dev / mean.");
+  prm.declare_entry("seed", "1", Integer(0), "Random packing seed (same seed, same packing).");
+  prm.declare_entry("target porosity", "0.37", Double(0, 1),
+                    "Random packing: stop growing at this porosity (or when jammed).");
+  prm.declare_entry("save file", "", Anything(),
+                    "Write the generated particles to this CSV file (x, y, z, r), for reuse.");
   prm.leave_subsection();
 
   prm.enter_subsection("Bonds");
@@ -180,7 +189,16 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
   {
     auto& s = c.particles;
     const std::string src = prm.get("source");
-    s.kind = src == "row" ? K::row : src == "file" ? K::file : src == "cubic" ? K::cubic : K::hcp;
+    s.kind = src == "row"     ? K::row
+             : src == "file"  ? K::file
+             : src == "cubic" ? K::cubic
+             : src == "hcp"   ? K::hcp
+                              : K::random;
+    s.distribution = prm.get("distribution");
+    s.radius_spread = prm.get_double("radius spread");
+    s.seed = unsigned(prm.get_integer("seed"));
+    s.target_porosity = prm.get_double("target porosity");
+    s.save_file = prm.get("save file");
     s.count = prm.get_integer("count");
     s.radius = prm.get_double("radius");
     s.radii = get_doubles(prm, "radii");

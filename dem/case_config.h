@@ -17,7 +17,8 @@ struct ParticleSource
     row,   ///< `count` spheres on a line from `origin` along `direction`
     file,  ///< CSV file with columns x, y, z, r (m)
     cubic, ///< simple cubic lattice filling `box_size`
-    hcp    ///< hexagonal close packing filling `box_size`
+    hcp,   ///< hexagonal close packing filling `box_size`
+    random ///< random close packing of `box_size` (packing_random.h), mono- or polydisperse
   } kind = Kind::row;
   int count = 2;
   double radius = 0.01;       ///< m
@@ -28,6 +29,12 @@ struct ParticleSource
   Vec3 box_size = Vec3(0.25, 0.1, 0.1); ///< m (lattices)
   std::string file;
   double density = 2500; ///< kg/m^3
+  // random packings
+  std::string distribution = "mono"; ///< mono | uniform | normal
+  double radius_spread = 0;          ///< relative (see RandomPackingSettings)
+  unsigned seed = 1;
+  double target_porosity = 0.37;
+  std::string save_file; ///< if set, the generated particles are written here (CSV)
 };
 
 struct GroupConfig

@@ -1,5 +1,6 @@
 #include "packings.h"
 #include "cell_list.h"
+#include "packing_random.h"
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -120,7 +121,34 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     check_radius(s.radius, "Particles/radius");
     lattice(s, p, s.kind == K::hcp);
     break;
+  case K::random:
+  {
+    RandomPackingSettings r;
+    r.box_size = s.box_size;
+    r.mean_radius = s.radius;
+    using D = RandomPackingSettings::Distribution;
+    if (s.distribution == "mono")
+      r.distribution = D::mono;
+    else if (s.distribution == "uniform")
+      r.distribution = D::uniform;
+    else if (s.distribution == "normal")
+      r.distribution = D::normal;
+    else
+      throw InputError("Particles/distribution: unknown '" + s.distribution +
+                       "' (expected mono, uniform or normal)");
+    r.radius_spread = s.radius_spread;
+    r.seed = s.seed;
+    r.target_porosity = s.target_porosity;
+    generate_random_packing(r, s.density, p);
+    for (auto& x : p.position)
+      x += s.origin;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p.reference_position[i] = p.position[i];
+    break;
   }
+  }
+  if (!s.save_file.empty())
+    write_particle_file(s.save_file, p);
   // Overlapping particles (centres closer than 1e-6 of the smaller radius) are an input error.
   double rmax = 0;
   for (double r : p.radius)

@@ -270,10 +270,8 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
     if (!supported[root[i]])
     {
       if (loaded[root[i]])
-        throw InputError(rigid_body_message +
-                         " (a loaded cluster of bonded particles, e.g. "
-                         "particle " +
-                         std::to_string(i) + ", has no support)");
+        throw InputError(rigid_body_message + " (particle " + std::to_string(i) +
+                         " is loaded in a bonded cluster without any support)");
       fixed[i] = 63;
     }
 

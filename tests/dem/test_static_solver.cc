@@ -254,3 +254,13 @@ TEST(StaticSolverErrors, IdleLooseParticlesStayAtRest)
   EXPECT_NEAR(-(m.particles.position[9] - m.particles.reference_position[9]).z() / expected, 1.0,
               1e-6);
 }
+
+// A 3-D lattice goes to CG; held only along x, a transverse load has no equilibrium: CG cannot
+// converge and the automatic fallback's factorisation reports the free rigid-body motion.
+TEST(StaticSolverErrors, LatticeHeldOnlyAlongXIsSingular)
+{
+  CaseConfig c = lattice_case(ParticleSource::Kind::cubic);
+  c.groups[0].fixed = dof_ux;
+  Model m = build_model(c);
+  EXPECT_THROW(solve_static(m), InputError);
+}
