@@ -98,6 +98,10 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.leave_subsection();
 
   prm.enter_subsection("Simulation");
+  prm.declare_entry("solver", "explicit", Selection("explicit|static"),
+                    "explicit: Verlet dynamics with damping; static: the equilibrium of the "
+                    "linearised bond network, solved directly (loads at full value, prescribed "
+                    "velocities read as displacements).");
   prm.declare_entry("time step", "auto", Anything(),
                     "Time step (s), or 'auto' for 'time step safety' x the critical step.");
   prm.declare_entry("time step safety", "0.8", Double(0, 1),
@@ -267,6 +271,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
       if (!(c.run.time_step > 0))
         throw dem::InputError("Simulation/time step: must be positive or 'auto'");
     }
+    c.run.static_solver = prm.get("solver") == "static";
     c.run.safety = prm.get_double("time step safety");
     c.run.end_time = prm.get_double("end time");
     c.run.quasi_static_speed = prm.get_double("quasi-static speed");

@@ -1,5 +1,6 @@
 #include "dem_run.h"
 #include "dem/run_explicit.h"
+#include "dem/static_solver.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
 #include <cstdio>
@@ -93,39 +94,69 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
               model.time_step, model.critical.critical(), model.critical.thesis_eq48);
   std::fflush(stdout);
 
-  CaseObserver observer(dir, out, model);
-  dem::RunSchedule schedule;
-  schedule.record_interval = out.history_interval;
-  schedule.snapshot_interval = out.snapshot_interval;
-  const dem::RunResult r = dem::run_explicit(model, config, observer, schedule);
-  observer.finish();
+  nlohmann::json j;
+  dem::RunResult r;
+  if (config.run.static_solver)
+  {
+    const dem::StaticResult st = dem::solve_static(model);
+    std::printf("static solve: %ld unknowns, %s, %ld iterations, %.3g s\n", st.n_free_dofs,
+                st.method.c_str(), st.iterations, st.assembly_seconds + st.solve_seconds);
+    if (out.write_vtu)
+    {
+      ParticleVtuSeries vtu(dir);
+      vtu.write(model.particles, model.bonds, 0.0, 0);
+      vtu.finish();
+    }
+    r.stop_reason = "static";
+    r.wall_seconds = st.assembly_seconds + st.solve_seconds;
+    if (!config.measure.deflection_group.empty())
+    {
+      const auto& g = model.groups[model.group_index(config.measure.deflection_group,
+                                                     "Measurements/deflection group")];
+      r.deflection_vector = dem::mean_displacement(model.particles, g);
+      r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
+    }
+    j["solver"] = {{"type", "static"},           {"method", st.method},
+                   {"iterations", st.iterations}, {"residual", st.residual},
+                   {"n_free_dofs", st.n_free_dofs}, {"assembly_seconds", st.assembly_seconds},
+                   {"solve_seconds", st.solve_seconds}};
+  }
+  else
+  {
+    CaseObserver observer(dir, out, model);
+    dem::RunSchedule schedule;
+    schedule.record_interval = out.history_interval;
+    schedule.snapshot_interval = out.snapshot_interval;
+    r = dem::run_explicit(model, config, observer, schedule);
+    observer.finish();
+    j["solver"] = {{"type", "explicit"}};
+    j["time_step"] = model.time_step;
+    j["steps"] = r.steps;
+    j["simulated_time"] = r.time;
+    j["bond_updates_per_second"] =
+        r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
+    j["energy"] = {{"kinetic", r.energy.kinetic},
+                   {"strain", r.energy.strain},
+                   {"damping", r.energy.damping},
+                   {"external_work", r.energy.external},
+                   {"initial", r.energy.initial}};
+    j["energy_balance_error"] = r.energy_balance_error;
+  }
 
   double mean_coordination = 0;
   for (int c : model.particles.coordination)
     mean_coordination += c;
   mean_coordination /= double(model.particles.size());
 
-  nlohmann::json j;
   j["mode"] = "dem";
   j["bond_model"] = prm.get({"Bonds"}, "model");
   j["n_particles"] = model.particles.size();
   j["n_bonds"] = model.bonds.size();
   j["mean_coordination"] = mean_coordination;
-  j["time_step"] = model.time_step;
   j["critical_time_step"] = model.critical.critical();
   j["critical_time_step_eq48"] = model.critical.thesis_eq48;
-  j["steps"] = r.steps;
-  j["simulated_time"] = r.time;
   j["stop_reason"] = r.stop_reason;
   j["solver_seconds"] = r.wall_seconds;
-  j["bond_updates_per_second"] =
-      r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
-  j["energy"] = {{"kinetic", r.energy.kinetic},
-                 {"strain", r.energy.strain},
-                 {"damping", r.energy.damping},
-                 {"external_work", r.energy.external},
-                 {"initial", r.energy.initial}};
-  j["energy_balance_error"] = r.energy_balance_error;
   if (r.deflection)
   {
     j[config.measure.deflection_name] = *r.deflection;
@@ -139,14 +170,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   for (const auto& g : model.groups)
   {
     groups[g.name]["n_particles"] = g.members.size();
-    dem::Vec3 u = dem::Vec3::Zero(), f = dem::Vec3::Zero();
-    for (int i : g.members)
-    {
-      u += model.particles.position[i] - model.particles.reference_position[i];
-      f += model.particles.force[i];
-    }
-    groups[g.name]["mean_displacement"] = to_json(u / double(g.members.size()));
-    groups[g.name]["force"] = to_json(f);
+    groups[g.name]["mean_displacement"] = to_json(dem::mean_displacement(model.particles, g));
+    groups[g.name]["force"] = to_json(dem::total_force(model.particles, g));
   }
   return j;
 }

@@ -69,6 +69,7 @@ struct RunConfig
   int threads = 1;
   double bond_damping_ratio = 0; ///< xi (thesis eq. 37)
   double particle_damping = 0;   ///< gamma (paper eq. 11-12)
+  bool static_solver = false; ///< true: linear static solve (static_solver.h) instead
 };
 
 struct MeasureConfig

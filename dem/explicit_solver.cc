@@ -364,19 +364,12 @@ void ExplicitSolver::step(bool record)
 
 Vec3 ExplicitSolver::group_force(int group) const
 {
-  Vec3 sum = Vec3::Zero();
-  for (int i : groups_.at(group).members)
-    sum += p_.force[i];
-  return sum;
+  return total_force(p_, groups_.at(group));
 }
 
 Vec3 ExplicitSolver::group_mean_displacement(int group) const
 {
-  Vec3 sum = Vec3::Zero();
-  const auto& m = groups_.at(group).members;
-  for (int i : m)
-    sum += p_.position[i] - p_.reference_position[i];
-  return sum / double(m.size());
+  return mean_displacement(p_, groups_.at(group));
 }
 
 double ExplicitSolver::last_ramp_end() const

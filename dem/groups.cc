@@ -10,6 +10,22 @@ std::pair<int, bool> parse_face(const std::string& t, const std::string& where)
   throw InputError(where + ": unknown face '" + t + "' (expected x-, x+, y-, y+, z- or z+)");
 }
 
+Vec3 mean_displacement(const ParticleStore& p, const Group& g)
+{
+  Vec3 sum = Vec3::Zero();
+  for (int i : g.members)
+    sum += p.position[i] - p.reference_position[i];
+  return g.members.empty() ? sum : Vec3(sum / double(g.members.size()));
+}
+
+Vec3 total_force(const ParticleStore& p, const Group& g)
+{
+  Vec3 sum = Vec3::Zero();
+  for (int i : g.members)
+    sum += p.force[i];
+  return sum;
+}
+
 Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& s,
                    const std::string& where)
 {

@@ -40,6 +40,11 @@ struct Group
 Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& sel,
                    const std::string& where);
 
+/// Mean displacement of the group's particles from the reference configuration (m).
+Vec3 mean_displacement(const ParticleStore& p, const Group& g);
+/// Sum of the particle forces over the group (support reactions on constrained DOFs).
+Vec3 total_force(const ParticleStore& p, const Group& g);
+
 /// Parses "x-", "z+" ... into (axis, upper).
 std::pair<int, bool> parse_face(const std::string& text, const std::string& where);
 } // namespace dembridge::dem
