@@ -1,0 +1,225 @@
+// dembridge::fem — run a FEM case from parsed parameters and summarise it.
+#include "fem_case.h"
+
+#include "elastic_problem.h"
+#include "explicit_dynamics.h"
+#include "parameters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace dembridge::fem
+{
+using namespace dealii;
+
+void declare_parameters(ParameterHandler& prm)
+{
+  declare_fem_parameters(prm);
+}
+
+namespace
+{
+nlohmann::json run_static(const Parameters& p, const std::filesystem::path& output_dir,
+                          MPI_Comm comm)
+{
+  ElasticProblem problem(p, comm);
+  ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
+  problem.make_grid();
+  problem.setup_system();
+  pcout << "FEM static: " << problem.n_cells() << " cells, " << problem.n_dofs() << " dofs"
+        << std::endl;
+  problem.assemble_system(/*condense=*/true);
+  const unsigned int iterations = problem.solve();
+  pcout << "FEM static: CG + BoomerAMG converged in " << iterations << " iterations" << std::endl;
+
+  nlohmann::json summary;
+  summary["n_dofs"] = problem.n_dofs();
+  summary["n_cells"] = problem.n_cells();
+  summary["solver_iterations"] = iterations;
+  summary["strain_energy"] = problem.strain_energy();
+
+  if (!p.deflection_points.empty())
+  {
+    const std::string where = "FEM/Measurements/deflection points";
+    double mean = 0;
+    std::vector<double> values;
+    for (const auto& x : p.deflection_points)
+    {
+      values.push_back(problem.probe_value(problem.make_probe(x, where), p.deflection_direction));
+      mean += values.back() / p.deflection_points.size();
+    }
+    summary[p.deflection_name] = mean;
+    summary[p.deflection_name + "_points"] = values;
+  }
+  if (!p.reaction_boundary.empty())
+  {
+    const auto id = find_boundary(problem.boundary_names(), p.reaction_boundary,
+                                  "FEM/Measurements/reaction boundary");
+    const Tensor<1, 3> r = problem.reaction(id);
+    summary["reaction_force"] = r * p.reaction_direction;
+    summary["reaction_force_vector"] = {r[0], r[1], r[2]};
+    if (!p.loaded_boundary.empty())
+    {
+      const auto loaded = find_boundary(problem.boundary_names(), p.loaded_boundary,
+                                        "FEM/Measurements/loaded boundary");
+      const auto fixed_means = problem.boundary_means(id);
+      const auto loaded_means = problem.boundary_means(loaded);
+      const Tensor<1, 3> e = p.reaction_direction;
+      const double length = std::abs((loaded_means.centroid - fixed_means.centroid) * e);
+      const double elongation =
+          (loaded_means.mean_displacement - fixed_means.mean_displacement) * e;
+      summary["area"] = fixed_means.area;
+      summary["gauge_length"] = length;
+      summary["elongation"] = elongation;
+      // eq. (64) of the thesis: E = (F / A) (L0 / dL); the reaction opposes the elongation.
+      summary["youngs_modulus"] = -(r * e) / fixed_means.area * length / elongation;
+    }
+  }
+  if (p.write_vtu)
+    problem.output_results(output_dir, 0, 0.0);
+  problem.timer().print_wall_time_statistics(comm);
+  return summary;
+}
+// Explicit dynamics: n steps of size factor * dt_stable; history.csv with the probe
+// displacements and the energies; the natural frequency from the zero crossings of the first
+// probe's dominant displacement component (free vibration about u = 0).
+nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& output_dir,
+                            MPI_Comm comm)
+{
+  ExplicitDynamics problem(p, comm);
+  ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
+  problem.setup();
+  const double dt = p.time_step_factor * problem.stable_time_step();
+  pcout << "FEM dynamics: " << problem.n_cells() << " cells, " << problem.n_dofs()
+        << " dofs, stable step " << problem.stable_time_step() << " s, step " << dt << " s"
+        << std::endl;
+
+  std::vector<PointProbe> probes;
+  for (const auto& x : p.probe_points)
+    probes.push_back(problem.make_probe(x, "FEM/Dynamics/probe points"));
+  unsigned int component = 0;
+  if (!probes.empty())
+  {
+    const Tensor<1, 3> u0 = problem.probe_vector(probes[0]);
+    for (unsigned int d = 1; d < 3; ++d)
+      if (std::abs(u0[d]) > std::abs(u0[component]))
+        component = d;
+  }
+
+  std::ofstream history;
+  if (Utilities::MPI::this_mpi_process(comm) == 0)
+  {
+    history.open(output_dir / "history.csv");
+    history << "step,time";
+    for (unsigned int k = 0; k < probes.size(); ++k)
+      history << ",probe" << k << "_ux,probe" << k << "_uy,probe" << k << "_uz";
+    history << ",kinetic_energy,kinetic_energy_shadow,strain_energy,load_potential,"
+               "total_energy,shadow_energy\n";
+    history.precision(12);
+  }
+  if (p.write_vtu)
+    problem.output_results(output_dir, 0, 0.0);
+
+  std::vector<double> shadow, total, crossings;
+  double previous_value = 0, previous_time = 0;
+  for (unsigned int n = 0; n < p.n_steps; ++n)
+  {
+    const double t_n = problem.time();
+    std::vector<Tensor<1, 3>> u;
+    for (const auto& probe : probes)
+      u.push_back(problem.probe_vector(probe));
+    problem.step(dt); // energies below belong to step n (time t_n)
+    const auto& e = problem.energies();
+    shadow.push_back(e.shadow_total());
+    total.push_back(e.total());
+    if (!u.empty())
+    {
+      const double value = u[0][component];
+      if (n > 0 && previous_value * value < 0)
+        crossings.push_back(previous_time +
+                            (t_n - previous_time) * previous_value / (previous_value - value));
+      previous_value = value;
+      previous_time = t_n;
+    }
+    if (history.is_open())
+    {
+      history << n << "," << t_n;
+      for (const auto& v : u)
+        history << "," << v[0] << "," << v[1] << "," << v[2];
+      history << "," << e.kinetic << "," << e.kinetic_shadow << "," << e.strain << ","
+              << e.load_potential << "," << e.total() << "," << e.shadow_total() << "\n";
+    }
+    if (p.write_vtu && p.output_every > 0 && (n + 1) % p.output_every == 0)
+      problem.output_results(output_dir, (n + 1) / p.output_every, problem.time());
+  }
+  if (p.write_vtu && (p.output_every == 0 || p.n_steps % p.output_every != 0))
+    problem.output_results(output_dir, p.output_every == 0 ? 1 : p.n_steps / p.output_every + 1,
+                           problem.time());
+
+  nlohmann::json summary;
+  summary["n_dofs"] = problem.n_dofs();
+  summary["n_cells"] = problem.n_cells();
+  summary["steps"] = p.n_steps;
+  summary["time_step"] = dt;
+  summary["stable_time_step"] = problem.stable_time_step();
+  summary["end_time"] = problem.time();
+  const auto relative_range = [](const std::vector<double>& v)
+  {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return (*hi - *lo) / std::abs(v.front());
+  };
+  // Drift: least-squares slope of the shadow energy times the duration, relative to H_0.
+  double mean_n = 0, mean_e = 0, sxy = 0, sxx = 0;
+  for (std::size_t k = 0; k < shadow.size(); ++k)
+  {
+    mean_n += double(k) / shadow.size();
+    mean_e += shadow[k] / shadow.size();
+  }
+  for (std::size_t k = 0; k < shadow.size(); ++k)
+  {
+    sxy += (k - mean_n) * (shadow[k] - mean_e);
+    sxx += (k - mean_n) * (k - mean_n);
+  }
+  if (!shadow.empty() && shadow.front() != 0)
+  {
+    summary["initial_energy"] = shadow.front();
+    summary["shadow_energy_relative_oscillation"] = relative_range(shadow);
+    summary["shadow_energy_relative_drift"] =
+        (sxx > 0 ? sxy / sxx * shadow.size() : 0.0) / std::abs(shadow.front());
+    summary["total_energy_relative_oscillation"] = relative_range(total);
+  }
+  if (crossings.size() >= 2)
+  {
+    // Successive zero crossings are half a period apart: first to last crossing.
+    const double half_period =
+        (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+    summary["natural_frequency"] = 1.0 / (2.0 * half_period);
+    summary["zero_crossings"] = crossings.size();
+  }
+  problem.timer().print_wall_time_statistics(comm);
+  return summary;
+}
+} // namespace
+
+nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path& output_dir,
+                        MPI_Comm comm)
+{
+  const Parameters p = parse_parameters(prm);
+  nlohmann::json summary;
+  if (p.problem == ProblemKind::static_elasticity)
+    summary = run_static(p, output_dir, comm);
+  else
+    summary = run_dynamics(p, output_dir, comm);
+  summary["mode"] = "fem";
+  summary["problem"] = p.problem == ProblemKind::static_elasticity ? "static" : "dynamics";
+  summary["degree"] = p.degree;
+  summary["n_ranks"] = Utilities::MPI::n_mpi_processes(comm);
+  if (p.material == MaterialModel::isotropic)
+  {
+    summary["youngs_modulus_input"] = p.youngs_modulus;
+    summary["poisson_ratio_input"] = p.poisson_ratio;
+  }
+  return summary;
+}
+} // namespace dembridge::fem
