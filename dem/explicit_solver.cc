@@ -153,6 +153,8 @@ template <bool record, bool dashpots> void ExplicitSolver::compute_bond_forces()
   for (int phase = 0; phase < 3; ++phase)
   {
     const auto& ranges = phases_[phase];
+    if (ranges.empty())
+      continue;
 #pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain)
     for (std::size_t r = 0; r < ranges.size(); ++r)
       bond_range<record, dashpots>(ranges[r].first, ranges[r].second, strain);
@@ -278,6 +280,8 @@ template <bool record> void ExplicitSolver::integrate()
       dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
       if constexpr (record)
         lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
+      dashpot_force_[i].setZero();
+      dashpot_torque_[i].setZero();
     }
     v[i] = v1;
     w[i] = w1;
@@ -343,14 +347,18 @@ template <bool record> void ExplicitSolver::integrate()
 void ExplicitSolver::step(bool record)
 {
   record = record || steps_ == 0; // the first step fixes the initial energy
-  std::fill(p_.force.begin(), p_.force.end(), Vec3::Zero());
-  std::fill(p_.torque.begin(), p_.torque.end(), Vec3::Zero());
-  if (dashpots_)
+  // Forces are zeroed here rather than at the end of integrate() because the previous step's
+  // values (support reactions) are read between steps; the dashpot arrays are zeroed in
+  // integrate() right after their last use.
+  const long n = long(p_.size());
+#pragma omp parallel for num_threads(settings_.threads) schedule(static)
+  for (long i = 0; i < n; ++i)
   {
-    std::fill(dashpot_force_.begin(), dashpot_force_.end(), Vec3::Zero());
-    std::fill(dashpot_torque_.begin(), dashpot_torque_.end(), Vec3::Zero());
-    record ? compute_bond_forces<true, true>() : compute_bond_forces<false, true>();
+    p_.force[i].setZero();
+    p_.torque[i].setZero();
   }
+  if (dashpots_)
+    record ? compute_bond_forces<true, true>() : compute_bond_forces<false, true>();
   else
     record ? compute_bond_forces<true, false>() : compute_bond_forces<false, false>();
   apply_loads();
