@@ -1,0 +1,20 @@
+# pvpython check that ParaView reads what dembridge writes: particles as vertices and bonds as
+# line cells, every named array present, one time step per snapshot.
+import sys
+from paraview.simple import PVDReader
+
+out = sys.argv[1]
+particles = PVDReader(FileName=out + "/particles.pvd")
+particles.UpdatePipeline()
+bonds = PVDReader(FileName=out + "/bonds.pvd")
+bonds.UpdatePipeline()
+n_particles = particles.GetDataInformation().GetNumberOfPoints()
+n_bonds = bonds.GetDataInformation().GetNumberOfCells()
+expected_p = {"radius", "displacement", "velocity", "angular_velocity", "force", "moment"}
+expected_b = {"normal_force", "shear_force", "twisting_moment", "bending_moment", "state"}
+missing = (expected_p - set(particles.PointData.keys())) | (expected_b - set(bonds.PointData.keys()))
+print("particles", n_particles, "bonds", n_bonds, "times", len(particles.TimestepValues))
+if n_particles != 11 or n_bonds != 10 or missing or len(particles.TimestepValues) < 2:
+    print("FAIL: missing", missing)
+    sys.exit(1)
+print("ok")
