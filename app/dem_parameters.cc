@@ -134,6 +134,10 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry(
       "frequency group", "", Anything(),
       "Group whose free vibration (after every load has ended) gives natural_frequency.");
+  prm.declare_entry("modulus groups", "", Anything(),
+                    "'fixed, loaded': end groups of a uniaxial test; gives youngs_modulus (thesis "
+                    "eq. 64) and the Poisson's ratios from the bounding particles (eq. 65).");
+  prm.declare_entry("modulus axis", "x", Selection("x|y|z"), "Loading axis of the uniaxial test.");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -356,6 +360,14 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
   c.measure.deflection_name = prm.get("deflection name");
   c.measure.deflection_direction = get_vec3(prm, "deflection direction");
   c.measure.frequency_group = prm.get("frequency group");
+  {
+    const auto ends = split_names(prm.get("modulus groups"));
+    if (ends.size() == 2)
+      c.measure.modulus_fixed_group = ends[0], c.measure.modulus_loaded_group = ends[1];
+    else if (!ends.empty())
+      throw dem::InputError("Measurements/modulus groups: expected two group names 'fixed, loaded'");
+    c.measure.modulus_axis = prm.get("modulus axis")[0] - 'x';
+  }
   if (!(c.measure.deflection_direction.norm() > 0))
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
   prm.leave_subsection();

@@ -1,5 +1,6 @@
 #include "dem_run.h"
 #include "dem/run_explicit.h"
+#include "dem/measurements.h"
 #include "dem/static_solver.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
@@ -161,6 +162,25 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   {
     j[config.measure.deflection_name] = *r.deflection;
     j[config.measure.deflection_name + "_vector"] = to_json(r.deflection_vector);
+  }
+  if (!config.measure.modulus_fixed_group.empty())
+  {
+    const auto& m = config.measure;
+    const auto a = dem::axial_response(
+        model.particles,
+        model.groups[model.group_index(m.modulus_fixed_group, "Measurements/modulus groups")],
+        model.groups[model.group_index(m.modulus_loaded_group, "Measurements/modulus groups")],
+        m.modulus_axis);
+    const std::string axes = "xyz";
+    j["youngs_modulus"] = a.youngs_modulus;
+    j["axial_stress"] = a.stress;
+    j["axial_strain"] = a.strain;
+    j["axial_force"] = a.force;
+    j["cross_section_area"] = a.area;
+    j["gauge_length"] = a.gauge_length;
+    for (int d = 0; d < 3; ++d)
+      if (d != a.axis)
+        j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
   }
   if (r.natural_frequency)
     j["natural_frequency"] = *r.natural_frequency;

@@ -63,7 +63,7 @@ int main(int argc, char** argv)
   std::normal_distribution<double> n01(0, 1);
   for (std::size_t i = 0; i < p.size(); ++i)
     p.velocity[i] = 1e-3 * Vec3(n01(rng), n01(rng), n01(rng));
-  const double dt = 0.8 * estimate_critical_time_step(p, b, damping).critical();
+  const double dt = 0.8 * estimate_critical_time_step(p, b).critical();
   ExplicitSolver solver(p, b, {}, {}, {}, {dt, 0.0, threads});
   const double setup = std::chrono::duration<double>(clock::now() - t0).count();
 

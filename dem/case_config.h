@@ -78,6 +78,9 @@ struct MeasureConfig
   std::string deflection_name = "deflection"; ///< summary key, e.g. tip_deflection
   Vec3 deflection_direction = -Vec3::UnitZ(); ///< deflection = mean displacement . direction
   std::string frequency_group;                ///< empty: none; free vibration after all loads end
+  std::string modulus_fixed_group;  ///< empty: no axial modulus
+  std::string modulus_loaded_group; ///< reaction and displacement of this end give E
+  int modulus_axis = 0;             ///< 0, 1, 2
 };
 
 struct CaseConfig

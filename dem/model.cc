@@ -75,7 +75,7 @@ Model build_model(const CaseConfig& c)
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
   m.critical =
-      estimate_critical_time_step(p, m.bonds, c.run.bond_damping_ratio, c.run.particle_damping);
+      estimate_critical_time_step(p, m.bonds, c.run.particle_damping);
   if (c.run.time_step > 0)
   {
     if (c.run.time_step > m.critical.critical())

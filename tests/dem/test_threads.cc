@@ -42,7 +42,7 @@ TEST(Threads, TwoThreadsReproduceOneThread)
   for (double xi : {0.0, 0.1})
   {
     Lattice one(xi), two(xi);
-    const double dt = 0.8 * estimate_critical_time_step(one.p, one.b, xi).critical();
+    const double dt = 0.8 * estimate_critical_time_step(one.p, one.b).critical();
     ExplicitSolver s1(one.p, one.b, {}, {}, {}, {dt, 0.0, 1});
     ExplicitSolver s2(two.p, two.b, {}, {}, {}, {dt, 0.0, 2});
     for (int n = 0; n < 200; ++n)
