@@ -365,7 +365,8 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     if (ends.size() == 2)
       c.measure.modulus_fixed_group = ends[0], c.measure.modulus_loaded_group = ends[1];
     else if (!ends.empty())
-      throw dem::InputError("Measurements/modulus groups: expected two group names 'fixed, loaded'");
+      throw dem::InputError(
+          "Measurements/modulus groups: expected two group names 'fixed, loaded'");
     c.measure.modulus_axis = prm.get("modulus axis")[0] - 'x';
   }
   if (!(c.measure.deflection_direction.norm() > 0))

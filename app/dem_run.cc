@@ -1,6 +1,6 @@
 #include "dem_run.h"
-#include "dem/run_explicit.h"
 #include "dem/measurements.h"
+#include "dem/run_explicit.h"
 #include "dem/static_solver.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
@@ -117,9 +117,12 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       r.deflection_vector = dem::mean_displacement(model.particles, g);
       r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
     }
-    j["solver"] = {{"type", "static"},           {"method", st.method},
-                   {"iterations", st.iterations}, {"residual", st.residual},
-                   {"n_free_dofs", st.n_free_dofs}, {"assembly_seconds", st.assembly_seconds},
+    j["solver"] = {{"type", "static"},
+                   {"method", st.method},
+                   {"iterations", st.iterations},
+                   {"residual", st.residual},
+                   {"n_free_dofs", st.n_free_dofs},
+                   {"assembly_seconds", st.assembly_seconds},
                    {"solve_seconds", st.solve_seconds}};
   }
   else

@@ -30,12 +30,12 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
   for (int d = 0; d < 3; ++d)
     if (d != axis)
       r.area *= extent[d];
-  const double dx = reference_centroid(p, loaded_end)[axis] - reference_centroid(p, fixed_end)[axis];
+  const double dx =
+      reference_centroid(p, loaded_end)[axis] - reference_centroid(p, fixed_end)[axis];
   r.gauge_length = std::abs(dx);
   if (!(r.gauge_length > 0))
     throw InputError("Measurements/modulus groups: the two end groups have the same position");
-  const double du =
-      mean_displacement(p, loaded_end)[axis] - mean_displacement(p, fixed_end)[axis];
+  const double du = mean_displacement(p, loaded_end)[axis] - mean_displacement(p, fixed_end)[axis];
   r.strain = du / dx; // dx carries the orientation: tension positive
   // reaction on the loaded end, oriented like dx (a pull on the + end is tension)
   r.force = total_force(p, loaded_end)[axis] * (dx > 0 ? 1.0 : -1.0);

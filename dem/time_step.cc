@@ -61,7 +61,7 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
             .eigenvalues()
             .maxCoeff();
       };
-      const double lam = largest(key[0], key[1], key[2], key[3]); // omega_max^2
+      const double lam = largest(key[0], key[1], key[2], key[3]);    // omega_max^2
       const double mu = largest(key[10], key[10], key[11], key[11]); // 2 zeta omega, largest
       // central differences with the damping force from v^{n-1/2} are stable for
       // omega^2 dt^2 + 2 mu dt <= 4 (1-DOF analysis; taking both maxima is conservative)

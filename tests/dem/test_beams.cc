@@ -91,7 +91,7 @@ TEST(CantileverCase3, TimoshenkoIsResolutionIndependentParallelBondConverges)
 {
   const double expected = cantilever_timoshenko(1e5, 4, 200e9, 0.3, 0.2);
   double previous_pbm_error = 1e9;
-  for (int bonds : {1, 2, 4, 6, 8, 10})
+  for (int bonds = 1; bonds <= 10; ++bonds)
   {
     const RunResult t = run(cantilever(BondModel::timoshenko, bonds));
     report("case 3 TBBM bonds=" + std::to_string(bonds), *t.deflection, expected, t);
