@@ -51,7 +51,8 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   energy_.kinetic = energy_.initial;
 }
 
-// Spatial slabs along the longest extent; see the header for the phases.
+// Spatial slabs along the axis that follows the particle memory order; see the header for the
+// phases.
 void ExplicitSolver::partition_bonds()
 {
   const std::size_t nb = b_.size();
