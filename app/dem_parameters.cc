@@ -138,6 +138,13 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "'fixed, loaded': end groups of a uniaxial test; gives youngs_modulus (thesis "
                     "eq. 64) and the Poisson's ratios from the bounding particles (eq. 65).");
   prm.declare_entry("modulus axis", "x", Selection("x|y|z"), "Loading axis of the uniaxial test.");
+  prm.declare_entry("flexural groups", "", Anything(),
+                    "'pin, roller, loaded, bottom': three-point bending groups (span along x, load "
+                    "along z); gives flexural_modulus by thesis eq. 67 and 69.");
+  prm.declare_entry("flexural poisson ratio", "0", Double(-1, 0.5),
+                    "nu (mean of nu_xy, nu_xz from the uniaxial tests) used by eq. 67/69.");
+  prm.declare_entry("form factor", "1.2", Double(0),
+                    "Timoshenko form factor f_s (rectangle: 6/5).");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -368,6 +375,12 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
       throw dem::InputError(
           "Measurements/modulus groups: expected two group names 'fixed, loaded'");
     c.measure.modulus_axis = prm.get("modulus axis")[0] - 'x';
+    c.measure.flexural_groups = split_names(prm.get("flexural groups"));
+    if (!c.measure.flexural_groups.empty() && c.measure.flexural_groups.size() != 4)
+      throw dem::InputError(
+          "Measurements/flexural groups: expected four group names 'pin, roller, loaded, bottom'");
+    c.measure.flexural_poisson_ratio = prm.get_double("flexural poisson ratio");
+    c.measure.form_factor = prm.get_double("form factor");
   }
   if (!(c.measure.deflection_direction.norm() > 0))
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");

@@ -185,6 +185,23 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       if (d != a.axis)
         j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
   }
+  if (!config.measure.flexural_groups.empty())
+  {
+    const auto& m = config.measure;
+    auto group = [&](int k) -> const dem::Group& {
+      return model.groups[model.group_index(m.flexural_groups[k], "Measurements/flexural groups")];
+    };
+    const auto f = dem::flexural_response(model.particles, group(0), group(1), group(2), group(3),
+                                          0, 2, m.flexural_poisson_ratio, m.form_factor);
+    j["flexural_load"] = f.load;
+    j["span"] = f.span;
+    j["load_length"] = f.load_length;
+    j["midspan_deflection"] = f.deflection;
+    j["bottom_deflection"] = f.bottom_deflection;
+    j["flexural_modulus_point_load"] = f.flexural_modulus_point;
+    j["flexural_modulus"] = f.flexural_modulus;
+    j["flexural_modulus_bottom"] = f.flexural_modulus_bottom;
+  }
   if (r.natural_frequency)
     j["natural_frequency"] = *r.natural_frequency;
   else if (!config.measure.frequency_group.empty())

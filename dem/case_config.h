@@ -69,7 +69,7 @@ struct RunConfig
   int threads = 1;
   double bond_damping_ratio = 0; ///< xi (thesis eq. 37)
   double particle_damping = 0;   ///< gamma (paper eq. 11-12)
-  bool static_solver = false; ///< true: linear static solve (static_solver.h) instead
+  bool static_solver = false;    ///< true: linear static solve (static_solver.h) instead
 };
 
 struct MeasureConfig
@@ -78,9 +78,12 @@ struct MeasureConfig
   std::string deflection_name = "deflection"; ///< summary key, e.g. tip_deflection
   Vec3 deflection_direction = -Vec3::UnitZ(); ///< deflection = mean displacement . direction
   std::string frequency_group;                ///< empty: none; free vibration after all loads end
-  std::string modulus_fixed_group;  ///< empty: no axial modulus
-  std::string modulus_loaded_group; ///< reaction and displacement of this end give E
-  int modulus_axis = 0;             ///< 0, 1, 2
+  std::string modulus_fixed_group;            ///< empty: no axial modulus
+  std::string modulus_loaded_group;           ///< reaction and displacement of this end give E
+  int modulus_axis = 0;                       ///< 0, 1, 2
+  std::vector<std::string> flexural_groups;   ///< pin, roller, loaded (top), bottom; empty: none
+  double flexural_poisson_ratio = 0;          ///< nu from the uniaxial tests (thesis eq. 67)
+  double form_factor = 1.2;                   ///< Timoshenko f_s (6/5: rectangle)
 };
 
 struct CaseConfig

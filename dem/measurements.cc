@@ -63,3 +63,46 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
   return r;
 }
 } // namespace dembridge::dem
+
+namespace dembridge::dem
+{
+FlexuralResponse flexural_response(const ParticleStore& p, const Group& pin, const Group& roller,
+                                   const Group& loaded, const Group& bottom, int span_axis,
+                                   int load_axis, double nu, double fs)
+{
+  FlexuralResponse r;
+  Vec3 lo = p.reference_position[0], hi = lo;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    lo = lo.cwiseMin(p.reference_position[i] - Vec3::Constant(p.radius[i]));
+    hi = hi.cwiseMax(p.reference_position[i] + Vec3::Constant(p.radius[i]));
+  }
+  const int width_axis = 3 - span_axis - load_axis;
+  const double w = hi[width_axis] - lo[width_axis], h = hi[load_axis] - lo[load_axis];
+  const double I = w * h * h * h / 12.0, A = w * h;
+  // the supports push against the load: their reaction is the load carried by the beam
+  r.load = std::abs(total_force(p, pin)[load_axis] + total_force(p, roller)[load_axis]);
+  r.span =
+      std::abs(reference_centroid(p, roller)[span_axis] - reference_centroid(p, pin)[span_axis]);
+  double xmin = p.reference_position[loaded.members[0]][span_axis], xmax = xmin;
+  for (int i : loaded.members)
+  {
+    xmin = std::min(xmin, p.reference_position[i][span_axis]);
+    xmax = std::max(xmax, p.reference_position[i][span_axis]);
+  }
+  r.load_length = xmax - xmin;
+  const double top = std::abs(mean_displacement(p, loaded)[load_axis]);
+  r.bottom_deflection = std::abs(mean_displacement(p, bottom)[load_axis]);
+  r.deflection = 0.5 * (top + r.bottom_deflection);
+  if (!(r.deflection > 0) || !(r.span > 0))
+    return r;
+  const double L = r.span, b = r.load_length;
+  r.flexural_modulus_point =
+      r.load / (2 * r.deflection) * (L * L * L / (24 * I) + L * fs * (1 + nu) / A); // eq. 67
+  const double bracket69 =
+      (8 * L * L * L - 4 * b * b * L + b * b * b) / (192 * I) + fs * (L - b) * (1 + nu) / A;
+  r.flexural_modulus = r.load / (2 * r.deflection) * bracket69;               // eq. 69
+  r.flexural_modulus_bottom = r.load / (2 * r.bottom_deflection) * bracket69; // bottom only
+  return r;
+}
+} // namespace dembridge::dem

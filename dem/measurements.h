@@ -29,3 +29,28 @@ struct AxialResponse
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
                              const Group& loaded_end, int axis);
 } // namespace dembridge::dem
+
+namespace dembridge::dem
+{
+/// Three-point bending (thesis section 4.4, Fig. 28): the load F is the total support reaction
+/// normal to the beam, the deflection delta the mean of the loaded (top) and the bottom midspan
+/// groups' displacements along the load, L_e the support distance, b the length over which the
+/// load is spread (extent of the loaded centres along the span), I = w h^3 / 12 and A = w h
+/// from the specimen's extent. Flexural moduli:
+///   eq. 67 (point load)        E_f = F/(2 delta) [L_e^3/(24 I) + L_e f_s (1 + nu)/A]
+///   eq. 69 (distributed load)  E_f = F/(2 delta) [(8 L_e^3 - 4 b^2 L_e + b^3)/(192 I)
+///                                                 + f_s (L_e - b)(1 + nu)/A]
+/// and eq. 69 with the bottom deflection alone. nu is the mean of nu_xy, nu_xz from the uniaxial
+/// tests; f_s the Timoshenko form factor (6/5 for a rectangle).
+struct FlexuralResponse
+{
+  double load = 0, deflection = 0, bottom_deflection = 0, span = 0, load_length = 0;
+  double flexural_modulus_point = 0;  ///< eq. 67
+  double flexural_modulus = 0;        ///< eq. 69
+  double flexural_modulus_bottom = 0; ///< eq. 69, bottom deflection
+};
+
+FlexuralResponse flexural_response(const ParticleStore& p, const Group& pin, const Group& roller,
+                                   const Group& loaded, const Group& bottom, int span_axis,
+                                   int load_axis, double poisson_ratio, double form_factor);
+} // namespace dembridge::dem

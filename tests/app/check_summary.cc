@@ -1,5 +1,6 @@
 // check_summary FILE KEY OP VALUE [TOL] ...
-// Asserts values of summary.json: OP is "near" (relative tolerance TOL), "lt" or "gt".
+// Asserts values of summary.json: OP is "near" (relative tolerance TOL), "lt" or "gt", or
+// "near_in" with VALUE another summary.json whose KEY is the reference (two solvers compared).
 // Nested keys use dots (energy.kinetic). Prints every comparison; exit 1 on any failure.
 #include <cmath>
 #include <fstream>
@@ -25,21 +26,44 @@ int main(int argc, char** argv)
   bool ok = true;
   for (int a = 2; a < argc;)
   {
-    const std::string key = argv[a], op = argv[a + 1];
-    const double value = std::stod(argv[a + 2]);
-    a += 3;
-    const nlohmann::json* node = &j;
-    std::stringstream path(key);
-    for (std::string part; std::getline(path, part, '.');)
+    std::string key = argv[a], op = argv[a + 1];
+    auto lookup = [&](const nlohmann::json& doc, const std::string& k)
     {
-      if (!node->contains(part))
+      const nlohmann::json* node = &doc;
+      std::stringstream path(k);
+      for (std::string part; std::getline(path, part, '.');)
       {
-        std::cerr << "FAIL " << key << ": missing\n";
+        if (!node->contains(part))
+          throw std::runtime_error("FAIL " + k + ": missing");
+        node = &(*node)[part];
+      }
+      return node->get<double>();
+    };
+    double value;
+    if (op == "near_in")
+    {
+      std::ifstream other(argv[a + 2]);
+      if (!other)
+      {
+        std::cerr << argv[a + 2] << ": cannot open\n";
         return 1;
       }
-      node = &(*node)[part];
+      value = lookup(nlohmann::json::parse(other), key);
+      op = "near";
     }
-    const double got = node->get<double>();
+    else
+      value = std::stod(argv[a + 2]);
+    a += 3;
+    double got;
+    try
+    {
+      got = lookup(j, key);
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << e.what() << "\n";
+      return 1;
+    }
     bool pass;
     if (op == "near")
     {
