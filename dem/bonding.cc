@@ -46,12 +46,17 @@ std::size_t form_bonds(ParticleStore& p, BondStore& bonds, const BondMaterial& m
   std::sort(pairs.begin(), pairs.end()); // deterministic bond order
   for (auto [i, j] : pairs)
     add_bond(p, bonds, mat, i, j);
+  mark_reference_configuration(p);
+  return bonds.size() - before;
+}
+
+void mark_reference_configuration(ParticleStore& p)
+{
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     p.orientation[i] = Quat::Identity();
     p.reference_position[i] = p.position[i];
   }
-  return bonds.size() - before;
 }
 
 void assign_bond_damping(const ParticleStore& p, BondStore& bonds, double xi)

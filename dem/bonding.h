@@ -8,7 +8,12 @@
 
 namespace dembridge::dem
 {
-/// Bonds every pair within contact range; returns the number of bonds added.
+/// Makes the current state the reference: orientations identity (bond rotations are measured
+/// from here) and reference positions = positions (displacements are measured from here).
+void mark_reference_configuration(ParticleStore& p);
+
+/// Bonds every pair within contact range and marks the reference configuration; returns the
+/// number of bonds added.
 std::size_t form_bonds(ParticleStore& p, BondStore& bonds, const BondMaterial& mat,
                        double contact_radius_multiplier);
 

@@ -45,10 +45,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     dashpot_force_.assign(p_.size(), Vec3::Zero());
     dashpot_torque_.assign(p_.size(), Vec3::Zero());
   }
-  for (std::size_t i = 0; i < p_.size(); ++i) // energy present at the start (eq. 53)
-    energy_.initial += 0.5 * p_.mass[i] * p_.velocity[i].squaredNorm() +
-                       0.5 * p_.inertia[i] * p_.angular_velocity[i].squaredNorm();
-  energy_.kinetic = energy_.initial;
+  // energy_.initial is set by the first step, from the leapfrog state at t_0 (integrate())
 }
 
 // Spatial slabs along the axis that follows the particle memory order; see the header for the
@@ -250,38 +247,32 @@ template <bool record> void ExplicitSolver::integrate()
       w1 = w0 + (dt / I) * M[i];
     }
     else
+    {
+      // One DOF, translation (eq. 40) or rotation (eq. 44): a constrained DOF takes its
+      // prescribed velocity and `load` becomes the support reaction; a free one feels particle
+      // damping (paper eq. 11-12).
+      auto update =
+          [&](bool constrained, double prescribed, double before, double& load, double inertia)
+      {
+        if (constrained)
+        {
+          load = inertia * (prescribed - before) / dt - load;
+          return prescribed;
+        }
+        const double damp = gamma * std::abs(load) * (before > 0 ? 1.0 : (before < 0 ? -1.0 : 0.0));
+        const double after = before + dt * (load - damp) / inertia;
+        dissipation += damp * 0.5 * (before + after) * dt;
+        if constexpr (record)
+          lead += damp * 0.5 * after * dt;
+        return after;
+      };
       for (int k = 0; k < 3; ++k)
       {
-        // translations (eq. 40) and rotations (eq. 44); particle damping (paper eq. 11-12)
-        if (mask & (1u << k))
-        {
-          v1[k] = p_.prescribed_velocity[i][k];
-          F[i][k] = m * (v1[k] - v0[k]) / dt - F[i][k]; // support reaction
-        }
-        else
-        {
-          const double damp =
-              gamma * std::abs(F[i][k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
-          v1[k] = v0[k] + dt * (F[i][k] - damp) / m;
-          dissipation += damp * 0.5 * (v0[k] + v1[k]) * dt;
-          if constexpr (record)
-            lead += damp * 0.5 * v1[k] * dt;
-        }
-        if (mask & (1u << (k + 3)))
-        {
-          w1[k] = p_.prescribed_angular_velocity[i][k];
-          M[i][k] = I * (w1[k] - w0[k]) / dt - M[i][k];
-        }
-        else
-        {
-          const double damp =
-              gamma * std::abs(M[i][k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
-          w1[k] = w0[k] + dt * (M[i][k] - damp) / I;
-          dissipation += damp * 0.5 * (w0[k] + w1[k]) * dt;
-          if constexpr (record)
-            lead += damp * 0.5 * w1[k] * dt;
-        }
+        v1[k] = update(mask & (1u << k), p_.prescribed_velocity[i][k], v0[k], F[i][k], m);
+        w1[k] =
+            update(mask & (1u << (k + 3)), p_.prescribed_angular_velocity[i][k], w0[k], M[i][k], I);
       }
+    }
     if (dashpots_)
     {
       // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt

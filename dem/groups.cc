@@ -10,6 +10,20 @@ std::pair<int, bool> parse_face(const std::string& t, const std::string& where)
   throw InputError(where + ": unknown face '" + t + "' (expected x-, x+, y-, y+, z- or z+)");
 }
 
+std::pair<Vec3, Vec3> reference_extent(const ParticleStore& p)
+{
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const Vec3 r = Vec3::Constant(p.radius[i]);
+    lo =
+        i == 0 ? Vec3(p.reference_position[i] - r) : Vec3(lo.cwiseMin(p.reference_position[i] - r));
+    hi =
+        i == 0 ? Vec3(p.reference_position[i] + r) : Vec3(hi.cwiseMax(p.reference_position[i] + r));
+  }
+  return {lo, hi};
+}
+
 Vec3 mean_displacement(const ParticleStore& p, const Group& g)
 {
   Vec3 sum = Vec3::Zero();
@@ -62,15 +76,11 @@ Group select_group(const ParticleStore& p, const std::string& name, const GroupS
     if (n == 0)
       break;
     const int a = s.face_axis;
-    double lo = p.position[0][a] - p.radius[0], hi = p.position[0][a] + p.radius[0];
+    const auto [lo, hi] = reference_extent(p);
     for (long i = 0; i < n; ++i)
     {
-      lo = std::min(lo, p.position[i][a] - p.radius[i]);
-      hi = std::max(hi, p.position[i][a] + p.radius[i]);
-    }
-    for (long i = 0; i < n; ++i)
-    {
-      const double dist = s.face_upper ? hi - p.position[i][a] : p.position[i][a] - lo;
+      const double x = p.reference_position[i][a];
+      const double dist = s.face_upper ? hi[a] - x : x - lo[a];
       if (dist <= s.face_thickness * p.radius[i] * (1.0 + 1e-9))
         g.members.push_back(int(i));
     }

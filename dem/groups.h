@@ -40,6 +40,10 @@ struct Group
 Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& sel,
                    const std::string& where);
 
+/// Bounding box of the spheres (radii included) in the reference configuration: the specimen
+/// extent used by face groups and by the specimen measurements.
+std::pair<Vec3, Vec3> reference_extent(const ParticleStore& p);
+
 /// Mean displacement of the group's particles from the reference configuration (m).
 Vec3 mean_displacement(const ParticleStore& p, const Group& g);
 /// Sum of the particle forces over the group (support reactions on constrained DOFs).

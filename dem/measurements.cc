@@ -19,12 +19,7 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
 {
   AxialResponse r;
   r.axis = axis;
-  Vec3 lo = p.reference_position[0], hi = lo;
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    lo = lo.cwiseMin(p.reference_position[i] - Vec3::Constant(p.radius[i]));
-    hi = hi.cwiseMax(p.reference_position[i] + Vec3::Constant(p.radius[i]));
-  }
+  const auto [lo, hi] = reference_extent(p);
   const Vec3 extent = hi - lo;
   r.area = 1.0;
   for (int d = 0; d < 3; ++d)
@@ -71,12 +66,7 @@ FlexuralResponse flexural_response(const ParticleStore& p, const Group& pin, con
                                    int load_axis, double nu, double fs)
 {
   FlexuralResponse r;
-  Vec3 lo = p.reference_position[0], hi = lo;
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    lo = lo.cwiseMin(p.reference_position[i] - Vec3::Constant(p.radius[i]));
-    hi = hi.cwiseMax(p.reference_position[i] + Vec3::Constant(p.radius[i]));
-  }
+  const auto [lo, hi] = reference_extent(p);
   const int width_axis = 3 - span_axis - load_axis;
   const double w = hi[width_axis] - lo[width_axis], h = hi[load_axis] - lo[load_axis];
   const double I = w * h * h * h / 12.0, A = w * h;

@@ -30,8 +30,7 @@ Model build_model(const CaseConfig& c)
   {
     for (auto [i, j] : c.bonds.explicit_bonds)
       add_bond(p, m.bonds, c.bonds.material, i, j);
-    for (std::size_t i = 0; i < p.size(); ++i)
-      p.orientation[i] = Quat::Identity();
+    mark_reference_configuration(p);
   }
   if (m.bonds.size() == 0)
     throw InputError("Bonds: no bond was formed (contact radius multiplier " +
@@ -74,8 +73,7 @@ Model build_model(const CaseConfig& c)
   }
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
-  m.critical =
-      estimate_critical_time_step(p, m.bonds, c.run.particle_damping);
+  m.critical = estimate_critical_time_step(p, m.bonds, c.run.particle_damping);
   if (c.run.time_step > 0)
   {
     if (c.run.time_step > m.critical.critical())
