@@ -60,6 +60,9 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("file", "", Anything(),
                     "Particle CSV file (source = file), relative to the case file.");
   prm.declare_entry("density", "2500", Double(), "Particle density (kg/m^3).");
+  prm.declare_entry("scale density by porosity", "false", Bool(),
+                    "Thesis eq. 63: particle density = density / (1 - porosity), so the specimen "
+                    "has the mass of the continuum it stands for (porosity of the packing box).");
   prm.declare_entry("distribution", "mono", Selection("mono|uniform|normal"),
                     "Radius distribution of a random packing (mean = radius).");
   prm.declare_entry("radius spread", "0", Double(0),
@@ -145,6 +148,13 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "nu (mean of nu_xy, nu_xz from the uniaxial tests) used by eq. 67/69.");
   prm.declare_entry("form factor", "1.2", Double(0),
                     "Timoshenko form factor f_s (rectangle: 6/5).");
+  prm.declare_entry("stress layers", "0", Integer(0),
+                    "Number of equal slabs of the specimen along 'stress layer axis' whose "
+                    "average stresses (thesis eq. 54) go into summary.json (stress_layers); 0: "
+                    "none.");
+  prm.declare_entry("stress layer axis", "z", Selection("x|y|z"), "Normal of the stress slabs.");
+  prm.declare_entry("stress histogram bins", "20", Integer(1),
+                    "Bins of the particle stress histogram (thesis Fig. 36) in summary.json.");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -223,6 +233,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     s.box_size = get_vec3(prm, "box size");
     s.file = prm.get("file");
     s.density = prm.get_double("density");
+    s.scale_density_by_porosity = prm.get_bool("scale density by porosity");
     if (s.kind == K::file && s.file.empty())
       throw dem::InputError("Particles/file: source = file needs a file name");
   }
@@ -381,6 +392,9 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
           "Measurements/flexural groups: expected four group names 'pin, roller, loaded, bottom'");
     c.measure.flexural_poisson_ratio = prm.get_double("flexural poisson ratio");
     c.measure.form_factor = prm.get_double("form factor");
+    c.measure.stress_layers = int(prm.get_integer("stress layers"));
+    c.measure.stress_layer_axis = prm.get("stress layer axis")[0] - 'x';
+    c.measure.stress_histogram_bins = int(prm.get_integer("stress histogram bins"));
   }
   if (!(c.measure.deflection_direction.norm() > 0))
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");

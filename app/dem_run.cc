@@ -1,5 +1,6 @@
 #include "dem_run.h"
 #include "dem/measurements.h"
+#include "dem/particle_stress.h"
 #include "dem/run_explicit.h"
 #include "dem/static_solver.h"
 #include "dem_parameters.h"
@@ -16,6 +17,40 @@ namespace
 nlohmann::json to_json(const dem::Vec3& v)
 {
   return {v.x(), v.y(), v.z()};
+}
+
+nlohmann::json to_json(const dem::Tensor3& t)
+{
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    rows.push_back({t(r, 0), t(r, 1), t(r, 2)});
+  return rows;
+}
+
+/// particle_stress.csv: reference position, radius and stress tensor (Pa) of every particle;
+/// written under a temporary name and renamed, so a partial file never looks complete.
+void write_particle_stresses(const std::filesystem::path& file, const dem::ParticleStore& p,
+                             const dem::ParticleStresses& s)
+{
+  const std::filesystem::path part = file.string() + ".part";
+  {
+    std::ofstream out(part);
+    if (!out)
+      throw std::runtime_error(file.string() + ": cannot write");
+    out << "id,x,y,z,radius,s_xx,s_yy,s_zz,s_yz,s_xz,s_xy\n" << std::setprecision(10);
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      const auto& x = p.reference_position[i];
+      const auto& t = s.sigma[i];
+      // symmetric part (the antisymmetric part is the neglected couples' share)
+      out << i << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << p.radius[i] << ','
+          << t(0, 0) << ',' << t(1, 1) << ',' << t(2, 2) << ',' << 0.5 * (t(1, 2) + t(2, 1)) << ','
+          << 0.5 * (t(0, 2) + t(2, 0)) << ',' << 0.5 * (t(0, 1) + t(1, 0)) << '\n';
+    }
+    if (!out)
+      throw std::runtime_error(file.string() + ": write failed");
+  }
+  std::filesystem::rename(part, file);
 }
 
 /// history.csv (one row per record), ParaView snapshots and console progress.
@@ -38,8 +73,23 @@ public:
     history_ << '\n' << std::setprecision(10);
   }
 
+  /// Records the loaded end's axial reaction against the end groups' relative displacement
+  /// (the force-displacement curve of thesis eq. 64).
+  void track_axial(int fixed, int loaded, int axis)
+  {
+    fixed_ = fixed, loaded_ = loaded, axis_ = axis;
+  }
+  const std::vector<double>& axial_displacements() const { return du_; }
+  const std::vector<double>& axial_forces() const { return force_; }
+
   void on_record(const dem::ExplicitSolver& s) override
   {
+    if (loaded_ >= 0)
+    {
+      du_.push_back(s.group_mean_displacement(loaded_)[axis_] -
+                    s.group_mean_displacement(fixed_)[axis_]);
+      force_.push_back(s.group_force(loaded_)[axis_]);
+    }
     const auto& e = s.energy();
     history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
              << e.damping << ',' << e.external << ',' << e.relative_error() << ',' << s.max_speed();
@@ -81,6 +131,8 @@ private:
   bool write_vtu_;
   std::filesystem::path history_path_;
   std::ofstream history_;
+  int fixed_ = -1, loaded_ = -1, axis_ = 0;
+  std::vector<double> du_, force_;
 };
 } // namespace
 
@@ -97,11 +149,13 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
 
   nlohmann::json j;
   dem::RunResult r;
+  std::pair<std::vector<double>, std::vector<double>> axial_curve; // explicit runs
   if (config.run.static_solver)
   {
     const dem::StaticResult st = dem::solve_static(model);
     std::printf("static solve: %ld unknowns, %s, %ld iterations, %.3g s\n", st.n_free_dofs,
                 st.method.c_str(), st.iterations, st.assembly_seconds + st.solve_seconds);
+    dem::record_bond_forces(model.particles, model.bonds);
     if (out.write_vtu)
     {
       ParticleVtuSeries vtu(dir);
@@ -128,11 +182,17 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   else
   {
     CaseObserver observer(dir, out, model);
+    if (!config.measure.modulus_fixed_group.empty())
+      observer.track_axial(
+          model.group_index(config.measure.modulus_fixed_group, "Measurements/modulus groups"),
+          model.group_index(config.measure.modulus_loaded_group, "Measurements/modulus groups"),
+          config.measure.modulus_axis);
     dem::RunSchedule schedule;
     schedule.record_interval = out.history_interval;
     schedule.snapshot_interval = out.snapshot_interval;
     r = dem::run_explicit(model, config, observer, schedule);
     observer.finish();
+    axial_curve = {observer.axial_displacements(), observer.axial_forces()};
     j["solver"] = {{"type", "explicit"}};
     j["time_step"] = model.time_step;
     j["steps"] = r.steps;
@@ -151,6 +211,37 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   for (int c : model.particles.coordination)
     mean_coordination += c;
   mean_coordination /= double(model.particles.size());
+
+  // Particle stresses (thesis eq. 62), their histogram (Fig. 36) and slab averages (eq. 54).
+  const dem::ParticleStresses stresses = dem::particle_stresses(model.particles, model.bonds);
+  const auto extent = dem::reference_extent(model.particles);
+  write_particle_stresses(dir / "particle_stress.csv", model.particles, stresses);
+  {
+    const int c = config.measure.modulus_fixed_group.empty() ? 0 : config.measure.modulus_axis;
+    const auto h = dem::stress_histogram(stresses, c, config.measure.stress_histogram_bins);
+    j["particle_stress_histogram"] = {{"component", std::string(2, "xyz"[c])},
+                                      {"mean", h.mean},
+                                      {"std_dev", h.std_dev},
+                                      {"max_ratio", h.max_ratio},
+                                      {"edges", h.edges},
+                                      {"counts", h.counts}};
+  }
+  if (config.measure.stress_layers > 0)
+  {
+    const auto l =
+        dem::stress_layers(model.particles, stresses, extent.first, extent.second,
+                           config.measure.stress_layer_axis, config.measure.stress_layers);
+    nlohmann::json sig = nlohmann::json::array();
+    for (const auto& t : l.sigma)
+      sig.push_back(to_json(t));
+    j["stress_layers"] = {{"axis", std::string(1, "xyz"[l.axis])},
+                          {"edges", l.edges},
+                          {"n_particles", l.count},
+                          {"sigma", sig}};
+  }
+  j["strain_energy"] = stresses.strain_energy;
+  j["porosity"] = model.porosity;
+  j["packing_volume"] = model.packing_volume;
 
   j["mode"] = "dem";
   j["bond_model"] = prm.get({"Bonds"}, "model");
@@ -184,6 +275,31 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     for (int d = 0; d < 3; ++d)
       if (d != a.axis)
         j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
+    if (axial_curve.first.size() >= 3)
+    {
+      const auto fit = dem::fit_youngs_modulus(axial_curve.first, axial_curve.second, a);
+      j["youngs_modulus_fit"] = fit.youngs_modulus;
+      j["youngs_modulus_fit_points"] = fit.points;
+    }
+    // RVE = the specimen between the planes where the end loads act (gauge length x area).
+    j["boundary_stress"] = a.stress;
+    const dem::Tensor3 rve = dem::rve_average(model.particles, stresses, extent.first,
+                                              extent.second, a.area * a.gauge_length);
+    j["rve_stress"] = to_json(rve);
+    j["rve_volume"] = a.area * a.gauge_length;
+    j["rve_stress_asymmetry"] = (rve - rve.transpose()).norm() / std::max(rve.norm(), 1e-300);
+    j["rve_stress_difference"] =
+        a.stress != 0 ? std::abs(rve(a.axis, a.axis) - a.stress) / std::abs(a.stress) : 0.0;
+  }
+  if (j.contains("stress_layers") && j.contains("boundary_stress") &&
+      j["boundary_stress"].get<double>() != 0)
+  {
+    // slab averages of the loading-direction normal stress over the boundary stress (Fig. 37)
+    const int c = config.measure.modulus_axis;
+    std::vector<double> ratio;
+    for (const auto& t : j["stress_layers"]["sigma"])
+      ratio.push_back(t[c][c].get<double>() / j["boundary_stress"].get<double>());
+    j["stress_layers"]["normal_stress_ratio"] = ratio;
   }
   if (!config.measure.flexural_groups.empty())
   {

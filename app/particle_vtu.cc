@@ -1,4 +1,5 @@
 #include "particle_vtu.h"
+#include "dem/particle_stress.h"
 #include <cstdio>
 #include <deal.II/base/data_out_base.h>
 #include <fstream>
@@ -7,6 +8,7 @@ namespace dembridge::app
 {
 namespace
 {
+using dealii::DataComponentInterpretation::component_is_part_of_tensor;
 using dealii::DataComponentInterpretation::component_is_part_of_vector;
 using dealii::DataComponentInterpretation::DataComponentInterpretation;
 using Ranges =
@@ -62,10 +64,22 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
                                             "moment",
                                             "group_mask",
                                             "coordination",
-                                            "id"};
+                                            "id",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress",
+                                            "stress"};
     Ranges ranges;
     for (unsigned first : {1u, 4u, 7u, 10u, 13u})
       ranges.emplace_back(first, first + 2, names[first], component_is_part_of_vector);
+    ranges.emplace_back(19u, 27u, "stress", component_is_part_of_tensor);
+    // Particle stress tensors (thesis eq. 62), Pa, tension positive.
+    const dem::ParticleStresses stress = dem::particle_stresses(p, b);
     std::vector<dealii::DataOutBase::Patch<0, 3>> patches(p.size());
     for (std::size_t i = 0; i < p.size(); ++i)
     {
@@ -83,6 +97,9 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
       patch.data(row++, 0) = float(p.group_mask[i]);
       patch.data(row++, 0) = float(p.coordination[i]);
       patch.data(row++, 0) = float(i);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          patch.data(row++, 0) = float(stress.sigma[i](r, c));
     }
     const std::string file = std::string("particles_") + tag + ".vtu";
     write_file(dir_ / file, patches, names, ranges, time, step);

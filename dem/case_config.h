@@ -28,7 +28,8 @@ struct ParticleSource
   Vec3 direction = Vec3::UnitX();
   Vec3 box_size = Vec3(0.25, 0.1, 0.1); ///< m (lattices)
   std::string file;
-  double density = 2500; ///< kg/m^3
+  double density = 2500;                  ///< kg/m^3
+  bool scale_density_by_porosity = false; ///< thesis eq. 63: rho_p = rho / (1 - porosity)
   // random packings
   std::string distribution = "mono"; ///< mono | uniform | normal
   double radius_spread = 0;          ///< relative (see RandomPackingSettings)
@@ -84,6 +85,9 @@ struct MeasureConfig
   std::vector<std::string> flexural_groups;   ///< pin, roller, loaded (top), bottom; empty: none
   double flexural_poisson_ratio = 0;          ///< nu from the uniaxial tests (thesis eq. 67)
   double form_factor = 1.2;                   ///< Timoshenko f_s (6/5: rectangle)
+  int stress_layers = 0;                      ///< slabs of the specimen for eq. 54 averages
+  int stress_layer_axis = 2;                  ///< slab normal
+  int stress_histogram_bins = 20;             ///< particle stress histogram (Fig. 36)
 };
 
 struct CaseConfig

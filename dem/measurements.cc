@@ -57,6 +57,29 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
   }
   return r;
 }
+
+ModulusFit fit_youngs_modulus(const std::vector<double>& du, const std::vector<double>& force,
+                              const AxialResponse& geometry)
+{
+  ModulusFit fit;
+  double umax = 0;
+  for (double u : du)
+    umax = std::max(umax, std::abs(u));
+  double su = 0, sf = 0, suu = 0, suf = 0;
+  for (std::size_t k = 0; k < du.size() && k < force.size(); ++k)
+    if (std::abs(du[k]) >= 0.25 * umax && umax > 0)
+    {
+      ++fit.points;
+      su += du[k], sf += force[k], suu += du[k] * du[k], suf += du[k] * force[k];
+    }
+  const double n = double(fit.points), det = n * suu - su * su;
+  if (fit.points < 2 || !(det > 0))
+    return fit;
+  const double slope = (n * suf - su * sf) / det; // N/m
+  // stress/strain = (F_or / A) / (du / dx) with F_or = F sign(dx): slope |dx| / A
+  fit.youngs_modulus = slope * geometry.gauge_length / geometry.area;
+  return fit;
+}
 } // namespace dembridge::dem
 
 namespace dembridge::dem

@@ -28,6 +28,18 @@ struct AxialResponse
 
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
                              const Group& loaded_end, int axis);
+
+/// Thesis eq. 64 with F/dL from the force-displacement curve: the least-squares slope (with
+/// intercept, so a constant offset does not bias it) of the loaded end's axial force over the
+/// end groups' relative axial displacement, scaled by the gauge length and area of `geometry`.
+/// The early transient is skipped: only points with |dL| >= 1/4 of the largest are fitted.
+struct ModulusFit
+{
+  double youngs_modulus = 0;
+  long points = 0;
+};
+ModulusFit fit_youngs_modulus(const std::vector<double>& relative_displacement,
+                              const std::vector<double>& force, const AxialResponse& geometry);
 } // namespace dembridge::dem
 
 namespace dembridge::dem

@@ -1,6 +1,7 @@
 #include "model.h"
 #include "bonding.h"
 #include "packings.h"
+#include <numbers>
 #include <sstream>
 
 namespace dembridge::dem
@@ -17,11 +18,41 @@ int Model::group_index(const std::string& name, const std::string& where) const
                    "' (groups: " + (known.empty() ? "none" : known) + ")");
 }
 
+namespace
+{
+/// Porosity of the packing; optionally scales the particle density by it (thesis eq. 63).
+void set_porosity(const ParticleSource& src, Model& m)
+{
+  using K = ParticleSource::Kind;
+  auto& p = m.particles;
+  if (src.kind == K::cubic || src.kind == K::hcp || src.kind == K::random)
+    m.packing_volume = src.box_size.prod();
+  else
+  {
+    const auto [lo, hi] = reference_extent(p);
+    m.packing_volume = (hi - lo).prod();
+  }
+  double solid = 0;
+  for (double r : p.radius)
+    solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  m.porosity = m.packing_volume > 0 ? 1.0 - solid / m.packing_volume : 0.0;
+  if (src.scale_density_by_porosity)
+  {
+    if (!(m.porosity >= 0 && m.porosity < 1))
+      throw InputError("Particles/scale density by porosity: the packing's porosity " +
+                       std::to_string(m.porosity) + " is outside [0, 1)");
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p.set_mass(i, p.mass[i] / (1.0 - m.porosity));
+  }
+}
+} // namespace
+
 Model build_model(const CaseConfig& c)
 {
   Model m;
   generate_particles(c.particles, m.particles);
   auto& p = m.particles;
+  set_porosity(c.particles, m);
 
   c.bonds.material.validate("Bonds");
   if (c.bonds.explicit_bonds.empty())

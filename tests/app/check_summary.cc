@@ -1,7 +1,8 @@
 // check_summary FILE KEY OP VALUE [TOL] ...
 // Asserts values of summary.json: OP is "near" (relative tolerance TOL), "lt" or "gt", or
 // "near_in" with VALUE another summary.json whose KEY is the reference (two solvers compared).
-// Nested keys use dots (energy.kinetic). Prints every comparison; exit 1 on any failure.
+// Nested keys use dots (energy.kinetic), array elements their index (rve_stress.0.0). Prints every
+// comparison; exit 1 on any failure.
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -33,6 +34,15 @@ int main(int argc, char** argv)
       std::stringstream path(k);
       for (std::string part; std::getline(path, part, '.');)
       {
+        if (node->is_array() && !part.empty() &&
+            part.find_first_not_of("0123456789") == std::string::npos)
+        {
+          const std::size_t index = std::stoul(part);
+          if (index >= node->size())
+            throw std::runtime_error("FAIL " + k + ": index " + part + " out of range");
+          node = &(*node)[index];
+          continue;
+        }
         if (!node->contains(part))
           throw std::runtime_error("FAIL " + k + ": missing");
         node = &(*node)[part];
