@@ -10,7 +10,7 @@ bonds = PVDReader(FileName=out + "/bonds.pvd")
 bonds.UpdatePipeline()
 n_particles = particles.GetDataInformation().GetNumberOfPoints()
 n_bonds = bonds.GetDataInformation().GetNumberOfCells()
-expected_p = {"radius", "displacement", "velocity", "angular_velocity", "force", "moment"}
+expected_p = {"radius", "displacement", "velocity", "angular_velocity", "force", "moment", "stress"}
 expected_b = {"normal_force", "shear_force", "twisting_moment", "bending_moment", "state"}
 missing = (expected_p - set(particles.PointData.keys())) | (expected_b - set(bonds.PointData.keys()))
 print("particles", n_particles, "bonds", n_bonds, "times", len(particles.TimestepValues))
