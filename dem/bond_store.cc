@@ -22,4 +22,12 @@ void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3&
   force.push_back(Vec3::Zero());
   moment.push_back(Vec3::Zero());
 }
+
+BondStiffness BondStore::stiffness(std::size_t k) const
+{
+  BondStiffness s;
+  s.kn = kn[k], s.ks = ks[k], s.ktor = ktor[k], s.kben = kben[k];
+  s.contact_fraction = contact_fraction[k], s.radius = radius[k];
+  return s;
+}
 } // namespace dembridge::dem

@@ -28,6 +28,8 @@ struct BondStore
   std::vector<Vec3> force, moment;
 
   std::size_t size() const { return a.size(); }
+  /// The constants of bond k as formed (inverse of add's BondStiffness argument).
+  BondStiffness stiffness(std::size_t k) const;
   void add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis, BondModel m,
            const BondStiffness& k);
 };

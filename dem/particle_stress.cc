@@ -25,10 +25,7 @@ BondForces elastic_bond_forces(const ParticleStore& p, const BondStore& b, std::
 /// Force on b of the linearised law: -(K u) restricted to b's translation, K = R K_local R^T.
 Vec3 linear_bond_force(const ParticleStore& p, const BondStore& b, std::size_t k)
 {
-  BondStiffness st;
-  st.kn = b.kn[k], st.ks = b.ks[k], st.ktor = b.ktor[k], st.kben = b.kben[k];
-  st.contact_fraction = b.contact_fraction[k];
-  const Matrix12 K = unified_bond_matrix(st, b.rest_length[k]);
+  const Matrix12 K = unified_bond_matrix(b.stiffness(k), b.rest_length[k]);
   const Eigen::Matrix3d R = bond_frame(b.rest_axis[k]);
   Vector12 u; // local components of [u_a, theta_a, u_b, theta_b]
   int block = 0;

@@ -96,9 +96,7 @@ BlockMatrix assemble_blocks(const ParticleStore& p, const BondStore& b)
         b.kn[k], b.ks[k], b.ktor[k], b.kben[k], b.contact_fraction[k], b.rest_length[k]};
     if (key != last_key)
     {
-      BondStiffness s;
-      s.kn = key[0], s.ks = key[1], s.ktor = key[2], s.kben = key[3], s.contact_fraction = key[4];
-      Kl = unified_bond_matrix(s, key[5]);
+      Kl = unified_bond_matrix(b.stiffness(k), key[5]);
       last_key = key;
     }
     const Eigen::Matrix3d R = bond_frame(b.rest_axis[k]); // local -> global
