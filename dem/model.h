@@ -19,7 +19,7 @@ struct Model
   std::vector<Load> loads;
   TimeStepEstimate critical;
   double time_step = 0;
-  double packing_volume = 0; ///< m^3: the box a lattice/random packing fills, else the extent
+  double packing_volume = 0; ///< m^3: the box of a random packing, else the particles' extent
   double porosity = 0;       ///< 1 - sum of sphere volumes / packing_volume
 
   int group_index(const std::string& name, const std::string& where) const;
