@@ -5,6 +5,7 @@
 #include "dem/static_solver.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -81,6 +82,17 @@ public:
   }
   const std::vector<double>& axial_displacements() const { return du_; }
   const std::vector<double>& axial_forces() const { return force_; }
+  /// Largest kinetic share KE / (KE + strain energy) over the second half of the run, and the
+  /// last one: how quasi-static the loading was.
+  std::pair<double, double> kinetic_share() const
+  {
+    double largest = 0;
+    const double t_end = kinetic_share_.empty() ? 0 : kinetic_share_.back().first;
+    for (const auto& [t, share] : kinetic_share_)
+      if (t >= 0.5 * t_end)
+        largest = std::max(largest, share);
+    return {largest, kinetic_share_.empty() ? 0.0 : kinetic_share_.back().second};
+  }
 
   void on_record(const dem::ExplicitSolver& s) override
   {
@@ -91,6 +103,8 @@ public:
       force_.push_back(s.group_force(loaded_)[axis_]);
     }
     const auto& e = s.energy();
+    if (e.kinetic + e.strain > 0)
+      kinetic_share_.emplace_back(s.time(), e.kinetic / (e.kinetic + e.strain));
     history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
              << e.damping << ',' << e.external << ',' << e.relative_error() << ',' << s.max_speed();
     for (std::size_t g = 0; g < s.groups().size(); ++g)
@@ -133,6 +147,7 @@ private:
   std::ofstream history_;
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
   std::vector<double> du_, force_;
+  std::vector<std::pair<double, double>> kinetic_share_;
 };
 } // namespace
 
@@ -193,6 +208,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     r = dem::run_explicit(model, config, observer, schedule);
     observer.finish();
     axial_curve = {observer.axial_displacements(), observer.axial_forces()};
+    const auto [share_max, share_final] = observer.kinetic_share();
+    j["kinetic_energy_share_max"] = share_max;
+    j["kinetic_energy_share_final"] = share_final;
     j["solver"] = {{"type", "explicit"}};
     j["time_step"] = model.time_step;
     j["steps"] = r.steps;
