@@ -44,9 +44,10 @@ std::vector<std::string> split_names(const std::string& text)
 void declare_dem_parameters(ParameterHandler& prm)
 {
   prm.enter_subsection("Particles");
-  prm.declare_entry("source", "row", Selection("row|file|cubic|hcp|random"),
+  prm.declare_entry("source", "row", Selection("row|file|cubic|hcp|fcc|random"),
                     "Where the spheres come from: a row (beams), a CSV file 'x, y, z, r' (m), a "
-                    "simple cubic / HCP lattice or a random close packing filling 'box size'.");
+                    "simple cubic / HCP / FCC lattice or a random close packing filling 'box "
+                    "size'.");
   prm.declare_entry("count", "2", Integer(1), "Number of particles of a row.");
   prm.declare_entry("radius", "0.01", Double(), "Particle radius (m), row and lattices.");
   prm.declare_entry("radii", "", List(Double(), 0),
@@ -218,6 +219,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
              : src == "file"  ? K::file
              : src == "cubic" ? K::cubic
              : src == "hcp"   ? K::hcp
+             : src == "fcc"   ? K::fcc
                               : K::random;
     s.distribution = prm.get("distribution");
     s.radius_spread = prm.get_double("radius spread");

@@ -18,6 +18,7 @@ struct ParticleSource
     file,  ///< CSV file with columns x, y, z, r (m)
     cubic, ///< simple cubic lattice filling `box_size`
     hcp,   ///< hexagonal close packing filling `box_size`
+    fcc,   ///< face-centred cubic (ABC stacking of triangular layers) filling `box_size`
     random ///< random close packing of `box_size` (packing_random.h), mono- or polydisperse
   } kind = Kind::row;
   int count = 2;

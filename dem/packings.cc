@@ -2,6 +2,7 @@
 #include "cell_list.h"
 #include "packing_random.h"
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -16,8 +17,13 @@ void check_radius(double r, const std::string& where)
                      " m)");
 }
 
-void lattice(const ParticleSource& s, ParticleStore& p, bool hcp)
+/// Layers of spheres along z. stacking 1: simple cubic (square layers); 2: HCP (triangular
+/// layers ABAB); 3: FCC (triangular layers ABC). A, B and C are the three positions of a
+/// triangular layer over the one below: B over the "up" hollows (r, r/sqrt3), C over the
+/// "down" hollows (2r, 2r/sqrt3), equivalent to (0, 2r/sqrt3).
+void lattice(const ParticleSource& s, ParticleStore& p, int stacking)
 {
+  const bool hcp = stacking > 1; // triangular layers
   const double r = s.radius;
   for (int d = 0; d < 3; ++d)
     if (s.box_size[d] < 2 * r)
@@ -30,9 +36,9 @@ void lattice(const ParticleSource& s, ParticleStore& p, bool hcp)
   const int nz = int(std::floor((s.box_size.z() - 2 * r) / dz + 1e-9)) + 1;
   for (int k = 0; k < nz; ++k)
   {
-    // HCP: layer B is shifted by (r, r/sqrt3) over layer A
-    const double ox = hcp && (k % 2) ? r : 0.0;
-    const double oy = hcp && (k % 2) ? r / std::sqrt(3.0) : 0.0;
+    const int phase = hcp ? k % stacking : 0; // 0: A, 1: B, 2: C
+    const double ox = phase == 1 ? r : 0.0;
+    const double oy = phase * r / std::sqrt(3.0);
     const int ny = int(std::floor((s.box_size.y() - 2 * r - oy) / dy + 1e-9)) + 1;
     for (int j = 0; j < ny; ++j)
     {
@@ -47,6 +53,10 @@ void lattice(const ParticleSource& s, ParticleStore& p, bool hcp)
 
 void read_particle_file(const std::string& path, double density, ParticleStore& p)
 {
+  // why: a directory opens as a stream on Linux and then reads as empty
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read the particle file (it is a directory)");
   std::ifstream in(path);
   if (!in)
     throw InputError(path + ": cannot open the particle file");
@@ -77,6 +87,8 @@ void read_particle_file(const std::string& path, double density, ParticleStore& 
     check_radius(v[3], path + ":" + std::to_string(lineno));
     p.add(Vec3(v[0], v[1], v[2]), v[3], density);
   }
+  if (in.bad())
+    throw InputError(path + ": reading the particle file failed");
   if (p.size() == 0)
     throw InputError(path + ": the particle file holds no particle");
 }
@@ -118,8 +130,9 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     break;
   case K::cubic:
   case K::hcp:
+  case K::fcc:
     check_radius(s.radius, "Particles/radius");
-    lattice(s, p, s.kind == K::hcp);
+    lattice(s, p, s.kind == K::cubic ? 1 : s.kind == K::hcp ? 2 : 3);
     break;
   case K::random:
   {
@@ -147,8 +160,6 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     break;
   }
   }
-  if (!s.save_file.empty())
-    write_particle_file(s.save_file, p);
   // Overlapping particles (centres closer than 1e-6 of the smaller radius) are an input error.
   double rmax = 0;
   for (double r : p.radius)
@@ -159,8 +170,13 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
                       {
                         const double d = (p.position[i] - p.position[j]).norm();
                         if (d < 1e-6 * std::min(p.radius[i], p.radius[j]))
-                          throw InputError("particles " + std::to_string(i) + " and " +
-                                           std::to_string(j) + " sit at the same position");
+                          throw InputError(
+                              (s.kind == K::file ? s.file + ": particles " : "particles ") +
+                              std::to_string(i) + " and " + std::to_string(j) +
+                              " sit at the same position");
                       });
+  // why: after the checks, so that bad input leaves no packing file behind
+  if (!s.save_file.empty())
+    write_particle_file(s.save_file, p);
 }
 } // namespace dembridge::dem

@@ -3,6 +3,7 @@
 //  - row: spheres on a straight line (beams, cantilevers);
 //  - simple cubic: spacing 2r, porosity 1 - pi/6;
 //  - HCP: layers of triangular lattices in ABAB stacking, spacing 2r, porosity 1 - pi/(3 sqrt 2);
+//  - FCC: the same layers in ABC stacking (the same ideal porosity, cubic symmetry);
 //  - CSV particle files "x, y, z, r" (SI units, '#' comments, optional header line).
 #include "case_config.h"
 #include "particle_store.h"

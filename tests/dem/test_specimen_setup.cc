@@ -69,3 +69,42 @@ TEST(SpecimenSetup, HcpPorosityApproachesTheIdealLattice)
       EXPECT_NEAR(m.porosity, 0.32, 0.005);
   }
 }
+
+// FCC = triangular layers stacked ABC: every particle of layer 3 sits exactly above one of
+// layer 0, none of layers 1 and 2 does (HCP: layer 2 does); interior spheres touch 12
+// neighbours, like HCP and unlike the simple cubic lattice's 6.
+TEST(SpecimenSetup, FccStackingAndCoordination)
+{
+  for (auto kind : {ParticleSource::Kind::fcc, ParticleSource::Kind::hcp})
+  {
+    CaseConfig c = cubic_specimen(false);
+    c.particles.kind = kind;
+    c.particles.radius = 0.005;
+    c.particles.box_size = Vec3(0.06, 0.06, 0.05);
+    const Model m = build_model(c);
+    const auto& p = m.particles;
+    const double r = 0.005, dz = 2 * r * std::sqrt(2.0 / 3.0);
+    auto layer_xy = [&](int k)
+    {
+      std::vector<Vec3> xy;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (std::abs(p.position[i].z() - (r + k * dz)) < 1e-9)
+          xy.push_back(Vec3(p.position[i].x(), p.position[i].y(), 0));
+      return xy;
+    };
+    auto stacked = [&](int k) // some particle of layer k sits above one of layer 0
+    {
+      for (const auto& a : layer_xy(k))
+        for (const auto& b : layer_xy(0))
+          if ((a - b).norm() < 1e-9)
+            return true;
+      return false;
+    };
+    ASSERT_FALSE(layer_xy(3).empty());
+    EXPECT_FALSE(stacked(1));
+    EXPECT_EQ(stacked(2), kind == ParticleSource::Kind::hcp);
+    EXPECT_EQ(stacked(3), kind == ParticleSource::Kind::fcc);
+    const int most = *std::max_element(p.coordination.begin(), p.coordination.end());
+    EXPECT_EQ(most, 12);
+  }
+}
