@@ -191,6 +191,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                    {"iterations", st.iterations},
                    {"residual", st.residual},
                    {"n_free_dofs", st.n_free_dofs},
+                   {"held_unbonded_particles", st.held_unbonded},
                    {"assembly_seconds", st.assembly_seconds},
                    {"solve_seconds", st.solve_seconds}};
   }

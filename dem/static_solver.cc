@@ -272,6 +272,18 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
                          " is loaded in a bonded cluster without any support)");
       fixed[i] = 63;
     }
+  // A sphere without any intact bond (a rattler of a random packing) carries nothing: as in the
+  // explicit solver it stays where its supports and prescribed motion put it.
+  long held_rattlers = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (p.coordination[i] == 0 && supported[root[i]] && fixed[i] != 63)
+    {
+      if (loaded[root[i]])
+        throw InputError(rigid_body_message + " (particle " + std::to_string(i) +
+                         " is loaded but has no bond)");
+      fixed[i] = 63, ++held_rattlers;
+    }
+  res.held_unbonded = held_rattlers;
 
   const BlockMatrix K = assemble_blocks(p, model.bonds);
   std::vector<int> index(6 * n, -1);

@@ -65,6 +65,8 @@ struct StaticResult
   double residual = 0;      ///< |(K u - f)_free| / |f_f - K_fc g_c|
   std::string method;  ///< "SimplicialLDLT", "ConjugateGradient+Jacobi" or "...+IncompleteCholesky"
   long iterations = 0; ///< CG iterations (0 for the direct solve)
+  long held_unbonded =
+      0; ///< supported spheres without any bond, held where their supports put them
 };
 
 /// Solves K u = f for the model's reference configuration and writes the equilibrium into

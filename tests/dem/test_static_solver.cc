@@ -264,3 +264,34 @@ TEST(StaticSolverErrors, LatticeHeldOnlyAlongXIsSingular)
   Model m = build_model(c);
   EXPECT_THROW(solve_static(m), InputError);
 }
+
+// A supported sphere without any bond (a rattler of a random packing caught in an end group)
+// has no stiffness in its free DOFs; the solver holds it where its supports put it, as the
+// explicit solver would leave it, and the bonded part gives eq. 29 unchanged (1e-6). Loaded, it
+// has no static solution: a clear error.
+TEST(StaticRattler, UnbondedSupportedSphereIsHeld)
+{
+  CaseConfig c = cantilever(BondModel::timoshenko, 10);
+  c.particles.count = 12; // particle 11: one more sphere past the tip, not bonded
+  GroupConfig rattler{"rattler", {}, dof_ux, 0, Vec3::Zero()};
+  rattler.selection.kind = GroupSelection::Kind::index;
+  rattler.selection.indices = {11};
+  c.groups.push_back(rattler);
+  c.groups[1].selection.indices = {10}; // the tip stays particle 10
+  Model m = build_model(c);
+  ASSERT_EQ(m.particles.coordination[11], 0);
+  const StaticResult r = solve_static(m);
+  EXPECT_EQ(r.held_unbonded, 1);
+  const double expected = cantilever_timoshenko(1e5, 4, 200e9, 0.3, 0.2);
+  const Vec3 tip = m.particles.position[10] - m.particles.reference_position[10];
+  EXPECT_NEAR(-tip.z() / expected, 1.0, 1e-6);
+  EXPECT_EQ(m.particles.position[11], m.particles.reference_position[11]);
+
+  LoadConfig push;
+  push.group = "rattler";
+  push.load.name = "push";
+  push.load.value = Vec3(0, 1, 0);
+  c.loads.push_back(push);
+  Model loaded = build_model(c);
+  EXPECT_THROW(solve_static(loaded), InputError);
+}
