@@ -1,4 +1,5 @@
 #include "measurements.h"
+#include <Eigen/Dense>
 #include <algorithm>
 
 namespace dembridge::dem
@@ -11,6 +12,29 @@ Vec3 reference_centroid(const ParticleStore& p, const Group& g)
   for (int i : g.members)
     c += p.reference_position[i];
   return c / double(g.members.size());
+}
+/// Eq. 65's lateral strain along d from the bounding particles of the two faces normal to d,
+/// as the slope du_d/dx_d of the least-squares plane u_d = a + c . X through both groups
+/// (reference positions X). For faces whose particles share their mean positions this is
+/// exactly (mean u_d(high) - mean u_d(low)) / width; the other two slopes absorb a rigid
+/// rotation (and shear), which otherwise leaks into the ratio when the two faces' particles
+/// sit at different mean heights (HCP layers).
+double lateral_strain(const ParticleStore& p, const Group& low, const Group& high, int d)
+{
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  for (const Group* g : {&low, &high})
+    for (int i : g->members)
+    {
+      const Vec3& x = p.reference_position[i];
+      const Eigen::Vector4d row(1.0, x.x(), x.y(), x.z());
+      normal += row * row.transpose();
+      rhs += row * (p.position[i][d] - x[d]);
+    }
+  // a face group whose particles all share one coordinate leaves that slope undetermined:
+  // drop the degenerate directions (the pseudo-inverse keeps the determined ones)
+  const Eigen::Vector4d c = normal.completeOrthogonalDecomposition().solve(rhs);
+  return c[1 + d];
 }
 } // namespace
 
@@ -49,11 +73,7 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
     const Group high = select_group(p, "lateral+", s, "Measurements");
     const double width = reference_centroid(p, high)[d] - reference_centroid(p, low)[d];
     if (width > 0 && r.strain != 0)
-    {
-      const double lateral =
-          (mean_displacement(p, high)[d] - mean_displacement(p, low)[d]) / width; // eq. 65
-      r.poisson_ratio[d] = -lateral / r.strain;
-    }
+      r.poisson_ratio[d] = -lateral_strain(p, low, high, d) / r.strain;
   }
   return r;
 }

@@ -1,0 +1,797 @@
+#!/usr/bin/python3
+"""Full-DEM specimen study of the thesis (sections 4-5, Table 1): runs the simulation matrix
+packings x radii x bond models x tests (x random seeds) with `dembridge run` on the example
+cases, collects every run's summary into results.csv and draws the thesis' Figures 29-35.
+
+    /usr/bin/python3 scripts/study.py                         # the whole Table 1 matrix, static
+    /usr/bin/python3 scripts/study.py --packings random --radii 5,7.5 --seeds 1-3 \\
+        --models pbm --tests compression --solver static,explicit --jobs 2 --out study
+
+Matrix (thesis Table 1): packings cubic (the thesis' "uniform"), hcp, random; radii 2.5, 5,
+7.5, 10, 12.5 mm; bond models pbm (parallel bond, thesis calibration k̄_n = E_b/(2 r),
+k̄_n/k̄_s = 4.2) and tbbm (Timoshenko beam); tests tension, compression, bending; 5 random
+packings (seeds 1-5) per radius. As in the thesis, TBBM bending at r = 2.5 mm is left out
+(Table 1: 0 runs) unless --full is given. Any other radius or seed may be asked for.
+
+Specimens. Each (packing, radius, seed) is generated once by dembridge (the compression example
+with `Particles/save file`, end time 0) and stored in OUT/specimens/; every test and bond model
+of that specimen reads it back (`Particles/source = file`), as the thesis loaded each packing in
+all three tests. Spheres that would not be bonded to the specimen's main bonded cluster (the
+rare rattlers of a random packing, which carry no load) are dropped from the stored specimen,
+so that the static solver never meets a support or load on a sphere without stiffness.
+Porosity (`specimen_porosity`) = 1 - sum of sphere volumes / volume of the specimen's extent
+(the bounding box of the spheres, as the thesis' Table 2 reports the HCP dimensions).
+
+Supports. Uniaxial tests: the end groups of the example (spheres within 1.5 r of the end
+faces; x- held in x, x+ moved in x), plus exactly three constraints for the rigid-body modes
+the ends leave free: the sphere nearest the corner (x-, y-, z-) held in y and z (group
+`corner`), the sphere nearest (x-, y+, z-) held in z (group `corner_y`). Statically
+determinate: their reactions are zero and the result does not depend on the spheres chosen.
+Bending: pin (x-) and roller (x+) are the spheres within 1.5 r of the bottom corner edges, the
+1 kN load is shared by the top spheres within 1.5 r of midspan, the deflection averages those
+and the bottom midspan spheres (examples/bending_*.prm); the boxes are recomputed from each
+specimen's extent. The flexural Poisson's ratio (eq. 67, 69) is the mean of nu_xy and nu_xz
+of the same specimen's compression run when there is one.
+
+Resumable: a run whose summary.json exists is skipped; dembridge writes summary.json last, so
+an interrupted run has none and is run again. results.csv and the plots are rebuilt from every
+run found under OUT/runs at the end (also with --report-only).
+Requires numpy and matplotlib (Debian: /usr/bin/python3); nothing else beyond the stdlib.
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+PACKINGS = ("cubic", "hcp", "random")
+RADII_MM = (2.5, 5.0, 7.5, 10.0, 12.5)
+MODELS = {"pbm": "parallel_bond", "tbbm": "timoshenko"}
+TESTS = ("tension", "compression", "bending")
+SEEDS = (1, 2, 3, 4, 5)
+BOX = (0.25, 0.1, 0.1)
+HCP_IDEAL_POROSITY = 1 - math.pi / (3 * math.sqrt(2))  # 0.25952
+RCP_MIN_POROSITY = 0.363  # Torquato et al. (2000), thesis section 5.1
+
+
+class StudyError(Exception):
+    pass
+
+
+# ----------------------------------------------------------------------------- matrix
+
+
+def parse_list(text, conv, allowed=None, name=""):
+    out = []
+    for part in text.split(","):
+        part = part.strip()
+        if not part:
+            continue
+        if conv is int and re.fullmatch(r"\d+-\d+", part):
+            a, b = (int(v) for v in part.split("-"))
+            out.extend(range(a, b + 1))
+            continue
+        try:
+            v = conv(part)
+        except ValueError:
+            raise StudyError(f"--{name}: cannot read '{part}'")
+        if allowed is not None and v not in allowed:
+            raise StudyError(f"--{name}: unknown '{part}' (expected one of {', '.join(allowed)})")
+        out.append(v)
+    if not out:
+        raise StudyError(f"--{name}: empty list")
+    return list(dict.fromkeys(out))
+
+
+def rtag(radius_mm):
+    return f"{radius_mm:g}".replace(".", "p")
+
+
+def specimen_name(packing, radius_mm, seed):
+    return f"{packing}_r{rtag(radius_mm)}mm" + (f"_s{seed}" if packing == "random" else "")
+
+
+def build_matrix(a):
+    runs = []
+    for packing in a.packings:
+        for radius in a.radii:
+            for seed in a.seeds if packing == "random" else [None]:
+                for model in a.models:
+                    for test in a.tests:
+                        if test == "bending" and model == "tbbm" and radius < 3 and not a.full:
+                            continue  # thesis Table 1: no TBBM flexural runs at r = 2.5 mm
+                        for solver in a.solver:
+                            runs.append(dict(packing=packing, radius_mm=radius, seed=seed,
+                                             model=model, test=test, solver=solver))
+    # compression before tension before bending within a specimen: bending takes its
+    # Poisson's ratio from the compression run
+    order = {t: i for i, t in enumerate(("compression", "tension", "bending"))}
+    runs.sort(key=lambda r: (specimen_name(r["packing"], r["radius_mm"], r["seed"]),
+                             order[r["test"]], r["model"], r["solver"]))
+    return runs
+
+
+def run_name(r):
+    return (specimen_name(r["packing"], r["radius_mm"], r["seed"]) +
+            f"_{r['model']}_{r['test']}_{r['solver']}")
+
+
+# ----------------------------------------------------------------------------- examples
+
+
+def example_for(test, packing):
+    """The example case a run starts from (overridden on the command line)."""
+    kind = "compression" if test in ("compression", "tension") else "bending"
+    for name in ([f"{test}_{packing}.prm"] if test == "tension" else []) + \
+            [f"{kind}_{packing}.prm", f"{kind}_random.prm", f"{kind}_cubic.prm"]:
+        if (EXAMPLES / name).exists():
+            return EXAMPLES / name
+    raise StudyError(f"no example case for {test} of {packing} in {EXAMPLES}")
+
+
+def prm_value(path, key):
+    """Value of 'set KEY = VALUE' in a .prm file (first occurrence), or None."""
+    pat = re.compile(r"^\s*set\s+" + re.escape(key) + r"\s*=\s*(.*?)\s*(#.*)?$")
+    for line in Path(path).read_text().splitlines():
+        m = pat.match(line)
+        if m:
+            return m.group(1)
+    return None
+
+
+def load_name(path):
+    text = Path(path).read_text()
+    m = re.search(r"subsection\s+Loads\s*\n\s*set\s+names\s*=\s*([^\n#]+)", text)
+    if not m:
+        raise StudyError(f"{path}: no 'subsection Loads' with names")
+    return m.group(1).split(",")[0].strip()
+
+
+def contact_multiplier(packing):
+    v = prm_value(example_for("compression", packing), "contact radius multiplier")
+    return float(v) if v is not None else 1.0
+
+
+# ----------------------------------------------------------------------------- specimens
+
+
+def bonded_pairs(x, r, eta):
+    """Pairs (i < j) that dem/bonding.cc bonds: |x_i - x_j| <= eta (r_i + r_j) (1 + 1e-9)."""
+    n = len(x)
+    h = 2.0 * eta * r.max() * (1 + 1e-9)
+    c = np.floor((x - x.min(axis=0)) / h).astype(np.int64)
+    dims = c.max(axis=0) + 1
+    key = (c[:, 2] * dims[1] + c[:, 1]) * dims[0] + c[:, 0]
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    I, J = [], []
+    idx = np.arange(n)
+    for dz in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                cc = c + np.array([dx, dy, dz])
+                ok = np.all((cc >= 0) & (cc < dims), axis=1)
+                nk = (cc[:, 2] * dims[1] + cc[:, 1]) * dims[0] + cc[:, 0]
+                lo = np.searchsorted(skey, nk, "left")
+                hi = np.searchsorted(skey, nk, "right")
+                cnt = np.where(ok, hi - lo, 0)
+                tot = int(cnt.sum())
+                if tot == 0:
+                    continue
+                ii = np.repeat(idx, cnt)
+                start = np.repeat(lo, cnt)
+                offs = np.arange(tot) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+                jj = order[start + offs]
+                keep = ii < jj
+                I.append(ii[keep])
+                J.append(jj[keep])
+    I = np.concatenate(I) if I else np.zeros(0, np.int64)
+    J = np.concatenate(J) if J else np.zeros(0, np.int64)
+    d2 = ((x[J] - x[I]) ** 2).sum(axis=1)
+    lim = eta * (r[I] + r[J]) * (1.0 + 1e-9)
+    keep = d2 <= lim * lim
+    return I[keep], J[keep]
+
+
+def largest_cluster(n, I, J):
+    parent = np.arange(n)
+
+    def find(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for i, j in zip(I.tolist(), J.tolist()):
+        a, b = find(i), find(j)
+        if a != b:
+            parent[max(a, b)] = min(a, b)
+    roots = np.array([find(i) for i in range(n)])
+    labels, counts = np.unique(roots, return_counts=True)
+    return roots == labels[np.argmax(counts)]
+
+
+def write_atomic(path, text):
+    tmp = Path(str(path) + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+def read_packing(path):
+    a = np.loadtxt(path, delimiter=",", comments="#", ndmin=2)
+    if a.shape[1] != 4 or len(a) == 0:
+        raise StudyError(f"{path}: not a particle file 'x, y, z, r'")
+    return a[:, :3].copy(), a[:, 3].copy()
+
+
+class Runner:
+    def __init__(self, exe, out, verbose=False, extra_sets=()):
+        self.exe = exe
+        self.out = Path(out).resolve()
+        self.verbose = verbose
+        self.extra_sets = list(extra_sets)
+        self.lock = threading.Lock()
+        self.spec_locks = {}
+        (self.out / "specimens").mkdir(parents=True, exist_ok=True)
+        (self.out / "runs").mkdir(parents=True, exist_ok=True)
+
+    def log(self, msg):
+        with self.lock:
+            print(msg, flush=True)
+
+    def dembridge(self, case, outdir, sets, logfile):
+        cmd = [str(self.exe), "run", str(case), "--output-dir", str(outdir)]
+        for s in sets + self.extra_sets:
+            cmd += ["--set", s]
+        with open(logfile, "w") as log:
+            log.write(" ".join(f"'{c}'" if " " in c else c for c in cmd) + "\n")
+            log.flush()
+            proc = subprocess.run(cmd, stdout=log, stderr=subprocess.PIPE, text=True)
+            log.write(proc.stderr)
+        if proc.returncode != 0:
+            err = proc.stderr.strip().splitlines()
+            raise StudyError(f"dembridge failed ({logfile}): {err[-1] if err else proc.returncode}")
+        return cmd
+
+    # -- specimen: generate once, drop spheres outside the main bonded cluster, derive groups
+    def specimen(self, packing, radius_mm, seed):
+        name = specimen_name(packing, radius_mm, seed)
+        with self.lock:
+            lock = self.spec_locks.setdefault(name, threading.Lock())
+        with lock:
+            info_path = self.out / "specimens" / f"{name}.json"
+            if info_path.exists():
+                return json.loads(info_path.read_text())
+            r = radius_mm / 1000.0
+            raw = self.out / "specimens" / f"{name}.generated.csv"
+            csv_path = self.out / "specimens" / f"{name}.csv"
+            gen_dir = self.out / "specimens" / f"{name}.generate"
+            t0 = time.time()
+            if not raw.exists():
+                sets = [f"Particles/radius={r!r}", f"Particles/save file={raw}",
+                        "Simulation/solver=explicit", "Simulation/end time=0",
+                        "Output/write vtu=false"]
+                if packing == "random":
+                    sets.append(f"Particles/seed={seed}")
+                # the example's corner spheres are right for r = 5 mm only; any valid index
+                # will do here (nothing is solved at end time 0)
+                sets += ["Group corner/select=index", "Group corner/indices=0",
+                         "Group corner_y/select=index", "Group corner_y/indices=-1"]
+                self.dembridge(example_for("compression", packing), gen_dir, sets,
+                               self.out / "specimens" / f"{name}.generate.log")
+                shutil.rmtree(gen_dir, ignore_errors=True)
+            x, rad = read_packing(raw)
+            eta = contact_multiplier(packing)
+            I, J = bonded_pairs(x, rad, eta)
+            keep = largest_cluster(len(x), I, J)
+            x, rad = x[keep], rad[keep]
+            lines = [f"# dembridge specimen {name}: {len(x)} spheres ({int((~keep).sum())} "
+                     "outside the main bonded cluster dropped)", "# x, y, z, r"]
+            lines += ["%.17g, %.17g, %.17g, %.17g" % (*p, q) for p, q in zip(x, rad)]
+            write_atomic(csv_path, "\n".join(lines) + "\n")
+            lo = (x - rad[:, None]).min(axis=0)
+            hi = (x + rad[:, None]).max(axis=0)
+            solid = float((4.0 / 3.0 * math.pi * rad ** 3).sum())
+            info = dict(name=name, packing=packing, radius_mm=radius_mm, seed=seed,
+                        file=str(csv_path), n_particles=int(len(x)),
+                        n_dropped=int((~keep).sum()), contact_radius_multiplier=eta,
+                        extent_min=lo.tolist(), extent_max=hi.tolist(),
+                        porosity=1.0 - solid / float(np.prod(hi - lo)),
+                        porosity_box=1.0 - solid / float(np.prod(BOX)),
+                        generate_seconds=round(time.time() - t0, 3))
+            # bonds inside the kept cluster (all bonds of kept spheres are inside it)
+            kept_bonds = int(np.count_nonzero(keep[I]))
+            info["mean_coordination"] = 2.0 * kept_bonds / len(x)
+            info["groups"] = self.groups(x, rad, lo, hi)
+            write_atomic(info_path, json.dumps(info, indent=1))
+            self.log(f"  specimen {name}: {len(x)} spheres, porosity {info['porosity']:.4f}, "
+                     f"coordination {info['mean_coordination']:.2f}"
+                     + (f", {info['n_dropped']} unbonded dropped" if info["n_dropped"] else "")
+                     + f" ({info['generate_seconds']:.1f} s)")
+            return info
+
+    @staticmethod
+    def groups(x, rad, lo, hi):
+        r = float(rad.max())
+        tol = 1e-6 * r
+        band = 1.5 * r + tol  # "within 1.5 r" of a face, as the face groups select
+
+        def nearest(target):
+            return int(np.argmin(((x - np.array(target)) ** 2).sum(axis=1)))
+
+        corner = nearest(lo)
+        corner_y = nearest([lo[0], hi[1], lo[2]])
+        if abs(x[corner_y, 1] - x[corner, 1]) < 0.25 * (hi[1] - lo[1]):
+            raise StudyError("corner spheres too close in y to hold the rotation about x")
+        mid = 0.5 * (lo[0] + hi[0])
+        # box limits on the centres: face bands at 1.5 r (centre within 1.5 r of the surface)
+        xb0, xb1 = lo[0] + band, hi[0] - band
+        zb0, zb1 = lo[2] + band, hi[2] - band
+        boxes = {
+            "pin": ([lo[0] - tol, lo[1] - tol, lo[2] - tol], [xb0, hi[1] + tol, zb0]),
+            "roller": ([xb1, lo[1] - tol, lo[2] - tol], [hi[0] + tol, hi[1] + tol, zb0]),
+            "loaded": ([mid - band, lo[1] - tol, zb1], [mid + band, hi[1] + tol, hi[2] + tol]),
+            "bottom": ([mid - band, lo[1] - tol, lo[2] - tol], [mid + band, hi[1] + tol, zb0]),
+        }
+        # box min/max of a box group compare centres; the centre of a sphere touching a face
+        # is r inside it, so the bands are measured from the extent (surface), as above
+        for g, (a, b) in boxes.items():
+            inside = np.all((x >= np.array(a)) & (x <= np.array(b)), axis=1)
+            if not inside.any():
+                raise StudyError(f"bending group {g} would be empty")
+        return dict(corner=corner, corner_y=corner_y,
+                    boxes={g: [list(map(float, a)), list(map(float, b))]
+                           for g, (a, b) in boxes.items()})
+
+    # -- one run
+    def run(self, spec, r, poisson=None):
+        name = run_name(r)
+        rdir = self.out / "runs" / name
+        summary = rdir / "summary.json"
+        if summary.exists():
+            return "skipped", 0.0
+        rdir.mkdir(parents=True, exist_ok=True)
+        for f in rdir.iterdir():  # leftovers of an interrupted run
+            if f.is_file():
+                f.unlink()
+        case = example_for(r["test"], r["packing"])
+        sets = ["Particles/source=file", f"Particles/file={spec['file']}",
+                f"Bonds/model={MODELS[r['model']]}",
+                f"Bonds/contact radius multiplier={spec['contact_radius_multiplier']!r}",
+                f"Simulation/solver={r['solver']}", "Output/write vtu=false"]
+        g = spec["groups"]
+        if r["test"] in ("compression", "tension"):
+            sets += ["Group corner/select=index", f"Group corner/indices={g['corner']}",
+                     "Group corner_y/select=index", f"Group corner_y/indices={g['corner_y']}"]
+            value = prm_value(case, "value")
+            v = abs(float(value.split(",")[0]))
+            sign = -1 if r["test"] == "compression" else 1
+            sets.append(f"Load {load_name(case)}/value={sign * v!r}, 0, 0")
+        else:
+            for gname, (a, b) in g["boxes"].items():
+                sets += [f"Group {gname}/select=box",
+                         f"Group {gname}/box min={a[0]!r}, {a[1]!r}, {a[2]!r}",
+                         f"Group {gname}/box max={b[0]!r}, {b[1]!r}, {b[2]!r}"]
+            if poisson is not None:
+                sets.append(f"Measurements/flexural poisson ratio={poisson!r}")
+        meta = dict(r, run=name, specimen=spec["name"], case=str(case.relative_to(ROOT)),
+                    specimen_porosity=spec["porosity"],
+                    specimen_porosity_box=spec["porosity_box"],
+                    specimen_particles=spec["n_particles"],
+                    specimen_dropped=spec["n_dropped"],
+                    contact_radius_multiplier=spec["contact_radius_multiplier"],
+                    flexural_poisson_ratio=poisson)
+        write_atomic(rdir / "run.json", json.dumps(meta, indent=1))
+        t0 = time.time()
+        self.dembridge(case, rdir, sets, rdir / "dembridge.log")
+        return "ran", time.time() - t0
+
+
+def poisson_for_bending(out, r):
+    """Mean of nu_xy, nu_xz of the same specimen's compression run (same model, same solver;
+    else the other solver), or None (the example's value is used)."""
+    for solver in (r["solver"], "static", "explicit"):
+        c = dict(r, test="compression", solver=solver)
+        s = Path(out) / "runs" / run_name(c) / "summary.json"
+        if s.exists():
+            j = json.loads(s.read_text())
+            if "poisson_ratio_xy" in j and "poisson_ratio_xz" in j:
+                return 0.5 * (j["poisson_ratio_xy"] + j["poisson_ratio_xz"])
+    return None
+
+
+def headline(r, summary):
+    if r["test"] == "bending":
+        v = summary.get("flexural_modulus")
+        return f"E_f = {v / 1e9:.4f} GPa" if v is not None else ""
+    e = summary.get("youngs_modulus")
+    txt = f"E = {e / 1e9:.4f} GPa" if e is not None else ""
+    if "poisson_ratio_xy" in summary:
+        txt += f", nu_xy = {summary['poisson_ratio_xy']:.3f}, nu_xz = {summary['poisson_ratio_xz']:.3f}"
+    return txt
+
+
+def execute(runner, runs, jobs):
+    """Runs grouped by specimen (bending after compression); specimens in parallel."""
+    by_spec = {}
+    for r in runs:
+        by_spec.setdefault(specimen_name(r["packing"], r["radius_mm"], r["seed"]), []).append(r)
+    total = len(runs)
+    done = [0]
+    failures = []
+    t_start = time.time()
+
+    def work(items):
+        r0 = items[0]
+        try:
+            spec = runner.specimen(r0["packing"], r0["radius_mm"], r0["seed"])
+        except (StudyError, OSError) as e:
+            for r in items:
+                failures.append((run_name(r), str(e)))
+                with runner.lock:
+                    done[0] += 1
+            runner.log(f"FAILED specimen {specimen_name(r0['packing'], r0['radius_mm'], r0['seed'])}: {e}")
+            return
+        for r in items:
+            poisson = None
+            if r["test"] == "bending":
+                poisson = poisson_for_bending(runner.out, r)
+                if poisson is None and r["packing"] == "cubic":
+                    poisson = 0.0
+            try:
+                status, secs = runner.run(spec, r, poisson)
+                msg = ""
+                if status == "ran":
+                    s = json.loads((runner.out / "runs" / run_name(r) / "summary.json").read_text())
+                    msg = f"{secs:.1f} s  {headline(r, s)}"
+                else:
+                    msg = "done before, skipped"
+            except (StudyError, OSError, ValueError) as e:
+                failures.append((run_name(r), str(e)))
+                msg = f"FAILED: {e}"
+            with runner.lock:
+                done[0] += 1
+                k = done[0]
+            el = time.time() - t_start
+            runner.log(f"[{k}/{total}] {run_name(r)}: {msg}  (elapsed {el:.0f} s)")
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(work, by_spec.values()))
+    return failures
+
+
+# ----------------------------------------------------------------------------- results
+
+
+def flatten(prefix, v, out):
+    if isinstance(v, dict):
+        for k, w in v.items():
+            flatten(f"{prefix}.{k}" if prefix else k, w, out)
+    elif isinstance(v, list):
+        if len(v) <= 64:
+            for i, w in enumerate(v):
+                flatten(f"{prefix}[{i}]", w, out)
+    elif isinstance(v, (int, float, str, bool)) or v is None:
+        out[prefix] = v
+
+
+PARAM_COLS = ["run", "packing", "radius_mm", "seed", "model", "test", "solver", "specimen",
+              "specimen_particles", "specimen_dropped", "specimen_porosity",
+              "specimen_porosity_box", "contact_radius_multiplier", "flexural_poisson_ratio",
+              "case"]
+
+
+def collect(out):
+    rows = []
+    for rdir in sorted((Path(out) / "runs").glob("*")):
+        s, m = rdir / "summary.json", rdir / "run.json"
+        if not (s.exists() and m.exists()):
+            continue
+        row = {k: v for k, v in json.loads(m.read_text()).items() if k in PARAM_COLS}
+        summary = json.loads(s.read_text())
+        flat = {}
+        for k, v in summary.items():
+            if k == "groups":  # per-group detail stays in the run's summary.json
+                continue
+            flatten(k, v, flat)
+        row.update(flat)
+        rows.append(row)
+    return rows
+
+
+def write_csv(path, rows):
+    keys = list(PARAM_COLS)
+    extra = sorted({k for r in rows for k in r} - set(keys))
+    keys += extra
+    tmp = Path(str(path) + ".tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("" if r.get(k) is None else r.get(k)) for k in keys})
+    os.replace(tmp, path)
+
+
+# ----------------------------------------------------------------------------- plots
+
+PLOTS = ("youngs_modulus.png", "poisson_ratio.png", "flexural_modulus.png",
+         "flexural_vs_axial.png")
+COLORS = {"cubic": "tab:blue", "hcp": "tab:gray", "random": "tab:orange"}
+LABELS = {"cubic": "uniform (cubic)", "hcp": "HCP", "random": "RCP"}
+MARKERS = {"pbm": "o", "tbbm": "s"}
+
+
+def fnum(v):
+    try:
+        f = float(v)
+        return f if math.isfinite(f) else None
+    except (TypeError, ValueError):
+        return None
+
+
+def plots(out, rows, solver_pref="static"):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(out)
+    made = []
+
+    def sel(test, packing=None, model=None):
+        got = [r for r in rows if r["test"] == test and (packing is None or r["packing"] == packing)
+               and (model is None or r["model"] == model)]
+        # one solver per point: the preferred one where both ran
+        keyf = lambda r: (r["packing"], r["radius_mm"], r.get("seed"), r["model"], r["test"])
+        best = {}
+        for r in got:
+            k = keyf(r)
+            if k not in best or r["solver"] == solver_pref:
+                best[k] = r
+        return list(best.values())
+
+    uni = [r for r in rows if r["test"] in ("compression", "tension")]
+    packings = [p for p in PACKINGS if any(r["packing"] == p for r in rows)]
+    models = [m for m in MODELS if any(r["model"] == m for r in rows)]
+
+    def save(fig, name):
+        fig.tight_layout()
+        path = out / name
+        fig.savefig(str(path) + ".tmp.png", dpi=110)
+        os.replace(str(path) + ".tmp.png", path)
+        plt.close(fig)
+        made.append(path)
+
+    def axial(test_rows):
+        return [(fnum(r["radius_mm"]), fnum(r.get("specimen_porosity")), fnum(r.get("youngs_modulus")),
+                 fnum(r.get("specimen_particles")), r) for r in test_rows
+                if fnum(r.get("youngs_modulus")) is not None]
+
+    # Figs. 29/30/32: E vs radius, number of particles, porosity (compression; tension hollow)
+    if uni:
+        fig, axs = plt.subplots(1, 3, figsize=(15, 4.5))
+        for p in packings:
+            for m in models:
+                for test, fill in (("compression", True), ("tension", False)):
+                    pts = axial(sel(test, p, m))
+                    if not pts:
+                        continue
+                    kw = dict(color=COLORS[p], marker=MARKERS[m], linestyle="none",
+                              markerfacecolor=COLORS[p] if fill else "none", alpha=0.85)
+                    axs[0].plot([a[0] for a in pts], [a[2] / 1e9 for a in pts], **kw)
+                    axs[1].plot([a[3] for a in pts], [a[2] / 1e9 for a in pts], **kw)
+                    axs[2].plot([a[1] for a in pts], [a[2] / 1e9 for a in pts], **kw)
+            # linear fits in radius and porosity over all seeds (Figs. 29a, 29c, 30a, 30b)
+            pts = axial(sel("compression", p, "pbm") or sel("compression", p))
+            if p != "cubic" and len({a[0] for a in pts}) >= 2:
+                rr = np.array([a[0] for a in pts]); pp = np.array([a[1] for a in pts])
+                ee = np.array([a[2] for a in pts]) / 1e9
+                c = np.polyfit(rr, ee, 1)
+                xs = np.linspace(0, rr.max(), 50)
+                axs[0].plot(xs, np.polyval(c, xs), color=COLORS[p], lw=0.8)
+                c = np.polyfit(pp, ee, 1)
+                target = HCP_IDEAL_POROSITY if p == "hcp" else RCP_MIN_POROSITY
+                xs = np.linspace(min(target, pp.min()), pp.max(), 50)
+                axs[2].plot(xs, np.polyval(c, xs), color=COLORS[p], lw=0.8)
+                axs[2].plot([target], [np.polyval(c, target)], marker="*", color=COLORS[p],
+                            ms=12, linestyle="none",
+                            label=f"{LABELS[p]} fit at p = {target:.4f}: "
+                                  f"{np.polyval(c, target):.3f} GPa")
+        if any(r["packing"] == "hcp" for r in uni):
+            for ax in (axs[0], axs[2]):
+                ax.axhline(wang_mora_E() / 1e9, color="k", ls=":", lw=0.8,
+                           label="Wang & Mora (2008), eq. 2: 5.843 GPa" if ax is axs[2] else None)
+        from matplotlib.lines import Line2D
+        proxies = [Line2D([], [], color=COLORS[p], lw=2, label=LABELS[p]) for p in packings]
+        proxies += [Line2D([], [], color="k", marker=MARKERS[m], linestyle="none",
+                           label=m.upper()) for m in models]
+        if any(r["test"] == "tension" for r in uni):
+            proxies.append(Line2D([], [], color="k", marker="o", markerfacecolor="none",
+                                  linestyle="none", label="open: tension"))
+        axs[0].legend(handles=proxies, fontsize=7)
+        axs[0].set_xlabel("particle radius $r_p$ (mm)")
+        axs[1].set_xlabel("number of particles $N_p$")
+        axs[1].set_xscale("log")
+        axs[2].set_xlabel("porosity $p$")
+        for ax in axs:
+            ax.set_ylabel("Young's modulus $E_x$ (GPa)")
+            ax.grid(alpha=0.3)
+        axs[2].legend(fontsize=7)
+        fig.suptitle("Young's modulus of the specimens (thesis Figs. 29, 30, 32, 33)")
+        save(fig, "youngs_modulus.png")
+
+        # Figs. 30c-d, 31: Poisson's ratios vs radius
+        fig, axs = plt.subplots(1, len(packings), figsize=(5 * len(packings), 4.2), squeeze=False)
+        for ax, p in zip(axs[0], packings):
+            for m in models:
+                pts = [r for r in sel("compression", p, m) if fnum(r.get("poisson_ratio_xy")) is not None]
+                for key, col in (("poisson_ratio_xy", "tab:red"), ("poisson_ratio_xz", "tab:green")):
+                    ax.plot([fnum(r["radius_mm"]) for r in pts], [fnum(r[key]) for r in pts],
+                            marker=MARKERS[m], color=col, linestyle="none",
+                            label=f"$\\nu_{{{key[-2:]}}}$ {m.upper()}")
+            ax.set_title(LABELS[p])
+            ax.set_xlabel("particle radius $r_p$ (mm)")
+            ax.set_ylabel("Poisson's ratio")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        fig.suptitle("Poisson's ratios from the uniaxial compression tests (thesis Figs. 30, 31)")
+        save(fig, "poisson_ratio.png")
+
+    bend = [r for r in rows if r["test"] == "bending" and fnum(r.get("flexural_modulus")) is not None]
+    if bend:
+        # Fig. 35: flexural modulus vs radius, three evaluations
+        fig, axs = plt.subplots(1, len(packings), figsize=(5 * len(packings), 4.2), squeeze=False)
+        for ax, p in zip(axs[0], packings):
+            for m in models:
+                pts = [r for r in sel("bending", p, m) if fnum(r.get("flexural_modulus")) is not None]
+                for key, col, lab in (("flexural_modulus_point_load", "tab:blue", "point load (eq. 67)"),
+                                      ("flexural_modulus", "tab:orange", "distributed load (eq. 69)"),
+                                      ("flexural_modulus_bottom", "tab:green", "bottom deflection, DL")):
+                    v = [(fnum(r["radius_mm"]), fnum(r.get(key))) for r in pts if fnum(r.get(key)) is not None]
+                    ax.plot([a for a, _ in v], [b / 1e9 for _, b in v], marker=MARKERS[m], color=col,
+                            linestyle="none", label=f"{lab} {m.upper()}")
+            ax.set_title(LABELS[p])
+            ax.set_xlabel("particle radius $r_p$ (mm)")
+            ax.set_ylabel("flexural modulus $E_f$ (GPa)")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        fig.suptitle("Three-point bending: flexural modulus (thesis Fig. 35)")
+        save(fig, "flexural_modulus.png")
+
+        # Fig. 34: flexural vs axial modulus of the same specimens
+        fig, ax = plt.subplots(figsize=(5.5, 5))
+        comp = {(r["packing"], r["radius_mm"], r.get("seed"), r["model"]): r for r in sel("compression")}
+        hi = 0
+        for r in sel("bending"):
+            c = comp.get((r["packing"], r["radius_mm"], r.get("seed"), r["model"]))
+            if c is None or fnum(c.get("youngs_modulus")) is None or fnum(r.get("flexural_modulus")) is None:
+                continue
+            e, ef = fnum(c["youngs_modulus"]) / 1e9, fnum(r["flexural_modulus"]) / 1e9
+            hi = max(hi, e, ef)
+            ax.plot(e, ef, marker=MARKERS[r["model"]], color=COLORS[r["packing"]], linestyle="none")
+        for p in packings:
+            ax.plot([], [], marker="o", color=COLORS[p], linestyle="none", label=LABELS[p])
+        ax.plot([0, hi * 1.05], [0, hi * 1.05], "k:", lw=0.8, label="$E_f = E_x$")
+        ax.set_xlabel("axial Young's modulus $E_x$ (GPa, compression)")
+        ax.set_ylabel("flexural modulus $E_f$ (GPa, eq. 69)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title("Axial vs flexural modulus (thesis Fig. 34)")
+        save(fig, "flexural_vs_axial.png")
+    return made
+
+
+def wang_mora_E(youngs=4e9, ratio=4.2):
+    """Thesis eq. 2 (Wang and Mora 2008) for the thesis' PBM: k_n = k̄_n pi r^2, k̄_n = E_b/(2r),
+    k_s = k_n / ratio; E_x is independent of r."""
+    r = 1.0
+    kn = youngs / (2 * r) * math.pi * r * r
+    ks = kn / ratio
+    return (3 * math.sqrt(2) * kn * (kn + ks) * (3 * kn ** 2 + 23 * ks ** 2 + 22 * kn * ks) /
+            (r * (18 * kn ** 3 + 119 * kn ** 2 * ks + 128 * kn * ks ** 2 + 23 * ks ** 3)))
+
+
+# ----------------------------------------------------------------------------- main
+
+
+def find_dembridge(arg):
+    cands = [Path(arg)] if arg else []
+    if not arg and os.environ.get("DEMBRIDGE"):
+        cands.append(Path(os.environ["DEMBRIDGE"]))
+    if not cands:
+        cands = [ROOT / "build" / "app" / "dembridge"]
+    for c in cands:
+        if c.is_file() and os.access(c, os.X_OK):
+            return c.resolve()
+    raise StudyError("the dembridge executable was not found (looked for "
+                     + ", ".join(str(c) for c in cands)
+                     + "); build it first (bash scripts/setup.sh) or pass --dembridge PATH")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--packings", default=",".join(PACKINGS), help="cubic,hcp,random")
+    ap.add_argument("--radii", default=",".join(f"{r:g}" for r in RADII_MM),
+                    help="particle radii in mm (default 2.5,5,7.5,10,12.5)")
+    ap.add_argument("--models", default="pbm,tbbm", help="pbm,tbbm")
+    ap.add_argument("--tests", default=",".join(TESTS), help="tension,compression,bending")
+    ap.add_argument("--seeds", default="1-5", help="random packings: seeds, e.g. 1-5 or 1,3")
+    ap.add_argument("--solver", default="static", help="static, explicit or static,explicit")
+    ap.add_argument("--full", action="store_true",
+                    help="also TBBM bending at r < 3 mm (left out in the thesis' Table 1)")
+    ap.add_argument("--jobs", type=int, default=1, help="specimens run in parallel (default 1)")
+    ap.add_argument("--out", default="study", help="output folder (default ./study)")
+    ap.add_argument("--dembridge", default="", help="path of the dembridge executable "
+                    "(default $DEMBRIDGE, else build/app/dembridge)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="extra override passed to every run (e.g. 'Simulation/threads=2')")
+    ap.add_argument("--dry-run", action="store_true", help="list the runs and stop")
+    ap.add_argument("--report-only", action="store_true",
+                    help="rebuild results.csv and the plots from the runs in --out")
+    ap.add_argument("--no-plots", action="store_true")
+    ap.add_argument("--fresh", action="store_true",
+                    help="first delete what an earlier call wrote into --out (runs, specimens, "
+                         "results.csv, the plots): nothing is reused")
+    a = ap.parse_args(argv)
+    try:
+        a.packings = parse_list(a.packings, str, PACKINGS, "packings")
+        a.radii = parse_list(a.radii, float, None, "radii")
+        if any(not (r > 0) for r in a.radii):
+            raise StudyError("--radii: radii must be positive (mm)")
+        a.models = parse_list(a.models, str, tuple(MODELS), "models")
+        a.tests = parse_list(a.tests, str, TESTS, "tests")
+        a.seeds = parse_list(a.seeds, int, None, "seeds")
+        a.solver = parse_list(a.solver, str, ("static", "explicit"), "solver")
+        runs = build_matrix(a)
+        if a.dry_run:
+            for r in runs:
+                print(run_name(r))
+            print(f"{len(runs)} runs")
+            return 0
+        out = Path(a.out)
+        if a.fresh and not a.report_only:
+            for d in ("runs", "specimens"):
+                shutil.rmtree(out / d, ignore_errors=True)
+            for f in ["results.csv", *PLOTS]:
+                (out / f).unlink(missing_ok=True)
+        failures = []
+        if not a.report_only:
+            exe = find_dembridge(a.dembridge)
+            runner = Runner(exe, out, extra_sets=a.set)
+            print(f"study: {len(runs)} runs into {out.resolve()} with {exe} ({a.jobs} job(s))",
+                  flush=True)
+            t0 = time.time()
+            failures = execute(runner, runs, a.jobs)
+            print(f"study: finished in {time.time() - t0:.1f} s", flush=True)
+        rows = collect(out)
+        out.mkdir(parents=True, exist_ok=True)
+        write_csv(out / "results.csv", rows)
+        print(f"study: {len(rows)} runs in {out / 'results.csv'}")
+        if not a.no_plots and rows:
+            for p in plots(out, rows, a.solver[0]):
+                print(f"study: wrote {p}")
+        if failures:
+            print(f"study: {len(failures)} run(s) failed:", file=sys.stderr)
+            for n, e in failures:
+                print(f"  {n}: {e}", file=sys.stderr)
+            return 1
+        return 0
+    except StudyError as e:
+        print(f"study.py: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
