@@ -81,7 +81,11 @@ public:
     fixed_ = fixed, loaded_ = loaded, axis_ = axis;
   }
   const std::vector<double>& axial_displacements() const { return du_; }
-  const std::vector<double>& axial_forces() const { return force_; }
+  /// Axial load history: the loaded end's reaction, or (force control) minus the fixed end's.
+  const std::vector<double>& axial_forces(bool from_fixed_end) const
+  {
+    return from_fixed_end ? fixed_force_ : force_;
+  }
   /// Largest kinetic share KE / (KE + strain energy) over the second half of the run, and the
   /// last one: how quasi-static the loading was.
   std::pair<double, double> kinetic_share() const
@@ -101,6 +105,7 @@ public:
       du_.push_back(s.group_mean_displacement(loaded_)[axis_] -
                     s.group_mean_displacement(fixed_)[axis_]);
       force_.push_back(s.group_force(loaded_)[axis_]);
+      fixed_force_.push_back(-s.group_force(fixed_)[axis_]);
     }
     const auto& e = s.energy();
     if (e.kinetic + e.strain > 0)
@@ -146,7 +151,7 @@ private:
   std::filesystem::path history_path_;
   std::ofstream history_;
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
-  std::vector<double> du_, force_;
+  std::vector<double> du_, force_, fixed_force_;
   std::vector<std::pair<double, double>> kinetic_share_;
 };
 } // namespace
@@ -164,7 +169,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
 
   nlohmann::json j;
   dem::RunResult r;
-  std::pair<std::vector<double>, std::vector<double>> axial_curve; // explicit runs
+  std::vector<double> axial_du, axial_loaded, axial_fixed; // explicit runs: load history
   if (config.run.static_solver)
   {
     const dem::StaticResult st = dem::solve_static(model);
@@ -208,7 +213,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     schedule.snapshot_interval = out.snapshot_interval;
     r = dem::run_explicit(model, config, observer, schedule);
     observer.finish();
-    axial_curve = {observer.axial_displacements(), observer.axial_forces()};
+    axial_du = observer.axial_displacements();
+    axial_loaded = observer.axial_forces(false);
+    axial_fixed = observer.axial_forces(true);
     const auto [share_max, share_final] = observer.kinetic_share();
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;
@@ -294,9 +301,10 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     for (int d = 0; d < 3; ++d)
       if (d != a.axis)
         j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
-    if (axial_curve.first.size() >= 3)
+    if (axial_du.size() >= 3)
     {
-      const auto fit = dem::fit_youngs_modulus(axial_curve.first, axial_curve.second, a);
+      const auto fit =
+          dem::fit_youngs_modulus(axial_du, a.force_controlled ? axial_fixed : axial_loaded, a);
       j["youngs_modulus_fit"] = fit.youngs_modulus;
       j["youngs_modulus_fit_points"] = fit.points;
     }

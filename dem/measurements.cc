@@ -1,5 +1,5 @@
 #include "measurements.h"
-#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 
 namespace dembridge::dem
@@ -21,20 +21,31 @@ Vec3 reference_centroid(const ParticleStore& p, const Group& g)
 /// sit at different mean heights (HCP layers).
 double lateral_strain(const ParticleStore& p, const Group& low, const Group& high, int d)
 {
-  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  // centred normal equations: cov c = b, cov = sum (X - Xm)(X - Xm)^T, b = sum (X - Xm) u_d
+  Vec3 mean = Vec3::Zero();
+  double n = 0;
+  for (const Group* g : {&low, &high})
+    for (int i : g->members)
+      mean += p.reference_position[i], n += 1;
+  mean /= n;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  Vec3 rhs = Vec3::Zero();
   for (const Group* g : {&low, &high})
     for (int i : g->members)
     {
-      const Vec3& x = p.reference_position[i];
-      const Eigen::Vector4d row(1.0, x.x(), x.y(), x.z());
-      normal += row * row.transpose();
-      rhs += row * (p.position[i][d] - x[d]);
+      const Vec3 x = p.reference_position[i] - mean;
+      cov += x * x.transpose();
+      rhs += x * (p.position[i][d] - p.reference_position[i][d]);
     }
-  // a face group whose particles all share one coordinate leaves that slope undetermined:
-  // drop the degenerate directions (the pseudo-inverse keeps the determined ones)
-  const Eigen::Vector4d c = normal.completeOrthogonalDecomposition().solve(rhs);
-  return c[1 + d];
+  // A face group whose particles all share a coordinate leaves that slope undetermined: the
+  // pseudo-inverse drops the degenerate directions and keeps the determined ones.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const double cutoff = 1e-12 * eig.eigenvalues().maxCoeff();
+  Vec3 c = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    if (eig.eigenvalues()[k] > cutoff)
+      c += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(rhs) / eig.eigenvalues()[k]);
+  return c[d];
 }
 } // namespace
 
@@ -56,8 +67,16 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
     throw InputError("Measurements/modulus groups: the two end groups have the same position");
   const double du = mean_displacement(p, loaded_end)[axis] - mean_displacement(p, fixed_end)[axis];
   r.strain = du / dx; // dx carries the orientation: tension positive
-  // reaction on the loaded end, oriented like dx (a pull on the + end is tension)
-  r.force = total_force(p, loaded_end)[axis] * (dx > 0 ? 1.0 : -1.0);
+  // The load on the loaded end, oriented like dx (a pull on the + end is tension): its support
+  // reaction when its motion is prescribed; under force control its net force vanishes in
+  // equilibrium, so the fixed end's reaction (equal and opposite) measures the load instead.
+  bool prescribed = false;
+  for (int i : loaded_end.members)
+    prescribed = prescribed || (p.dof_mask[i] & (1u << axis));
+  const double load =
+      prescribed ? total_force(p, loaded_end)[axis] : -total_force(p, fixed_end)[axis];
+  r.force = load * (dx > 0 ? 1.0 : -1.0);
+  r.force_controlled = !prescribed;
   r.stress = r.force / r.area;
   r.youngs_modulus = r.strain != 0 ? r.stress / r.strain : 0.0;
   for (int d = 0; d < 3; ++d)

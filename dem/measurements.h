@@ -24,6 +24,7 @@ struct AxialResponse
   double strain = 0;       ///< -
   double youngs_modulus = 0;
   double poisson_ratio[3] = {0, 0, 0}; ///< nu_{axis,d}; 0 on the axis itself
+  bool force_controlled = false;       ///< the load was read from the fixed end's reaction
 };
 
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from study import HCP_IDEAL_POROSITY, MODELS, PACKINGS, RCP_MIN_POROSITY
+from study import HCP_IDEAL_POROSITY, MODELS, PACKINGS, RCP_MIN_POROSITY, wang_mora_E
 
 PLOTS = ("youngs_modulus.png", "poisson_ratio.png", "flexural_modulus.png",
          "flexural_vs_axial.png")
@@ -172,13 +172,3 @@ def plots(out, rows, solver_pref="static"):
         ax.set_title("Axial vs flexural modulus (thesis Fig. 34)")
         save(fig, "flexural_vs_axial.png")
     return made
-
-
-def wang_mora_E(youngs=4e9, ratio=4.2):
-    """Thesis eq. 2 (Wang and Mora 2008) for the thesis' PBM: k_n = k̄_n pi r^2, k̄_n = E_b/(2r),
-    k_s = k_n / ratio; E_x is independent of r."""
-    r = 1.0
-    kn = youngs / (2 * r) * math.pi * r * r
-    ks = kn / ratio
-    return (3 * math.sqrt(2) * kn * (kn + ks) * (3 * kn ** 2 + 23 * ks ** 2 + 22 * kn * ks) /
-            (r * (18 * kn ** 3 + 119 * kn ** 2 * ks + 128 * kn * ks ** 2 + 23 * ks ** 3)))
