@@ -1,5 +1,6 @@
 #include "case_file.h"
 #include "dem_parameters.h"
+#include "verify.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
@@ -19,6 +20,7 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
   declare_dem_parameters(prm);
   declare_group_parameters(prm, groups);
   declare_load_parameters(prm, loads);
+  declare_verification_parameters(prm);
 #ifdef DEMBRIDGE_HAVE_FEM
   fem::declare_parameters(prm);
 #endif

@@ -1,9 +1,11 @@
 // dembridge: command-line front end.
 //   dembridge run CASE.prm [--set "Section/Key=value"]... [--output-dir DIR]
 //   dembridge print-parameters
+//   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "dem_run.h"
+#include "verify.h"
 #include "dem/types.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
@@ -98,6 +100,25 @@ int main(int argc, char** argv)
   run_cmd->add_option("--output-dir", output_dir, "Output folder (default output/CASE)");
   auto* print_cmd = app.add_subcommand("print-parameters",
                                        "Print every parameter with its default and documentation");
+  dembridge::app::VerifyOptions verify;
+  auto* verify_cmd = app.add_subcommand(
+      "verify", "Run a DEM specimen case and the FE model of the same specimen; compare them");
+  verify_cmd->add_option("case", verify.case_file, "DEM case file (uniaxial or bending test)")
+      ->required();
+  verify_cmd->add_option("--set", verify.overrides, "Override a parameter: \"Section/Key=value\"");
+  verify_cmd->add_option("--output-dir", verify.output_dir,
+                         "Output folder (default output/verify_CASE)");
+  auto* from = verify_cmd->add_option("--material-from", verify.material_from,
+                                      "summary.json of a uniaxial DEM test: E, mean nu");
+  auto* e_opt = verify_cmd->add_option("--youngs-modulus", verify.youngs_modulus, "E (Pa)");
+  auto* nu_opt = verify_cmd->add_option("--poisson-ratio", verify.poisson_ratio, "nu");
+  verify_cmd->add_option("--shear-modulus", verify.shear_modulus,
+                         "G (Pa): cubic FE material along the axes, C44 = G (default isotropic)");
+  e_opt->needs(nu_opt)->excludes(from);
+  nu_opt->needs(e_opt);
+  verify_cmd->add_option("--dem-run", verify.dem_run,
+                         "Folder of a finished DEM run of this case (its summary.json is used)");
+  verify_cmd->add_flag("!--no-plot", verify.plot, "Do not write comparison.png");
   try
   {
     app.parse(argc, argv);
@@ -115,6 +136,8 @@ int main(int argc, char** argv)
       prm.print_parameters(std::cout, dealii::ParameterHandler::Text);
       return 0;
     }
+    if (*verify_cmd)
+      return dembridge::app::verify(verify);
     return run(case_file, overrides, output_dir);
   }
   catch (const std::exception& e)

@@ -368,7 +368,10 @@ unsigned int ElasticProblem::solve()
         pcout << "FEM: could not set the matrix block size (PETSc error " << ierr << ")"
               << std::endl;
     }
-    amg.initialize(system_matrix, data);
+    {
+      TimerOutput::Scope amg_timer(computing_timer, "amg setup"); // part of "solve"
+      amg.initialize(system_matrix, data);
+    }
     try
     {
       cg.solve(system_matrix, distributed, system_rhs, amg);

@@ -74,6 +74,16 @@ public:
   BoundaryMeans boundary_means(dealii::types::boundary_id id) const;
   /// Strain energy 1/2 int eps : C : eps dx of the current solution (collective).
   double strain_energy() const;
+  /// Stress integrated over the slabs edges[k] <= x[axis] < edges[k+1] of the body: volume of
+  /// the body in each slab and the mean stress there (collective). Quadrature points (2x2x2
+  /// copies of the Gauss rule per cell) are assigned by position: exact when the edges lie on
+  /// cell faces.
+  struct LayerStresses
+  {
+    std::vector<double> volume;
+    std::vector<dealii::SymmetricTensor<2, 3>> sigma; ///< Pa, int sigma dx / volume
+  };
+  LayerStresses layer_stresses(unsigned int axis, const std::vector<double>& edges) const;
   /// Write displacement, strain, stress and von Mises stress (.vtu per rank, .pvtu, .pvd).
   void output_results(const std::filesystem::path& output_dir, unsigned int cycle, double time);
 

@@ -76,6 +76,39 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
       summary["youngs_modulus"] = -(r * e) / fixed_means.area * length / elongation;
     }
   }
+  for (const auto& name : p.reaction_boundaries)
+  {
+    const Tensor<1, 3> r = problem.reaction(
+        find_boundary(problem.boundary_names(), name, "FEM/Measurements/reaction boundaries"));
+    summary["reactions"][name] = {r[0], r[1], r[2]};
+  }
+  for (const auto& group : p.point_groups)
+  {
+    Tensor<1, 3> mean;
+    for (const auto& x : group.points)
+      mean += problem.probe_vector(problem.make_probe(x, "FEM/Measurements/point groups")) /
+              double(group.points.size());
+    summary["mean_displacements"][group.name] = {mean[0], mean[1], mean[2]};
+  }
+  if (p.stress_layer_axis >= 0)
+  {
+    const auto layers = problem.layer_stresses(p.stress_layer_axis, p.stress_layer_edges);
+    nlohmann::json sigma = nlohmann::json::array();
+    for (const auto& s : layers.sigma)
+      sigma.push_back(
+          {{s[0][0], s[0][1], s[0][2]}, {s[1][0], s[1][1], s[1][2]}, {s[2][0], s[2][1], s[2][2]}});
+    summary["stress_layers"] = {{"axis", std::string(1, char('x' + p.stress_layer_axis))},
+                                {"edges", p.stress_layer_edges},
+                                {"volume", layers.volume},
+                                {"sigma", sigma}};
+  }
+  const auto times = problem.timer().get_summary_data(TimerOutput::total_wall_time);
+  for (const auto& [section, seconds] : times)
+  {
+    std::string key = section;
+    std::replace(key.begin(), key.end(), ' ', '_');
+    summary["timing"][key + "_seconds"] = Utilities::MPI::max(seconds, comm);
+  }
   if (p.write_vtu)
     problem.output_results(output_dir, 0, 0.0);
   problem.timer().print_wall_time_statistics(comm);

@@ -4,8 +4,10 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,6 +56,59 @@ std::string resolve_mesh_file(const std::string& file)
   throw std::runtime_error("FEM/Mesh/file: mesh file '" + file + "' does not exist");
 }
 
+namespace
+{
+/// Boundary faces whose centres lie in a patch box get the patch's new boundary id. Done after
+/// the global refinement (the mesh is not refined again), on every cell a rank sees, so that
+/// ghost faces carry the same ids as their owners'.
+void apply_patches(const std::vector<BoundaryPatch>& patches,
+                   dealii::parallel::distributed::Triangulation<3>& tria, BoundaryNames& names)
+{
+  if (patches.empty())
+    return;
+  const std::string where = "FEM/Mesh/patches";
+  unsigned int next = 0;
+  for (const auto& [name, b] : names)
+    next = std::max<unsigned int>(next, b.id + 1u);
+  for (const auto id : tria.get_boundary_ids())
+    next = std::max<unsigned int>(next, id + 1u);
+  next = dealii::Utilities::MPI::max(next, tria.get_communicator());
+  double min_diameter = std::numeric_limits<double>::max();
+  for (const auto& cell : tria.active_cell_iterators())
+    if (cell->is_locally_owned())
+      min_diameter = std::min(min_diameter, cell->diameter());
+  const double tolerance =
+      1e-6 * dealii::Utilities::MPI::min(min_diameter, tria.get_communicator());
+  for (const auto& patch : patches)
+  {
+    if (names.count(patch.name))
+      throw std::runtime_error(where + ": '" + patch.name + "' already names a boundary");
+    const auto id = static_cast<dealii::types::boundary_id>(next++);
+    unsigned int n_faces = 0;
+    for (const auto& cell : tria.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const auto& face : cell->face_iterators())
+        {
+          if (!face->at_boundary())
+            continue;
+          const dealii::Point<3> c = face->center();
+          bool inside = true;
+          for (unsigned int d = 0; d < 3; ++d)
+            inside =
+                inside && c[d] >= patch.lower[d] - tolerance && c[d] <= patch.upper[d] + tolerance;
+          if (!inside)
+            continue;
+          face->set_boundary_id(id);
+          n_faces += cell->is_locally_owned();
+        }
+    if (dealii::Utilities::MPI::sum(n_faces, tria.get_communicator()) == 0)
+      throw std::runtime_error(where + ": patch '" + patch.name +
+                               "' contains no boundary face centre");
+    names[patch.name] = {id, 2};
+  }
+}
+} // namespace
+
 BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Triangulation<3>& tria)
 {
   BoundaryNames names;
@@ -92,6 +147,7 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
     }
   }
   tria.refine_global(p.refinements);
+  apply_patches(p.patches, tria, names);
   return names;
 }
 

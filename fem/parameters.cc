@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace dembridge::fem
 {
@@ -147,6 +148,10 @@ void declare_fem_parameters(ParameterHandler& prm)
                       "Number of cells of the coarse box along x, y, z.");
     prm.declare_entry("refinements", "0", Patterns::Integer(0, 10),
                       "Number of global refinements of the coarse mesh (each halves h).");
+    prm.declare_entry("patches", "", Patterns::Anything(),
+                      "'NAME: X,Y,Z to X,Y,Z; ...': the boundary faces (after refinement) whose "
+                      "centres lie in the box become the boundary NAME, e.g. a support strip "
+                      "'pin: 0,0,0 to 0.01,0.1,0'.");
     prm.leave_subsection();
 
     prm.enter_subsection("Material");
@@ -225,6 +230,16 @@ void declare_fem_parameters(ParameterHandler& prm)
                       "If set with the reaction boundary: youngs_modulus = (R/A) / (du/L0), "
                       "du and L0 the mean displacement and centroid distance between the two "
                       "boundaries along the reaction direction, A the reaction boundary area.");
+    prm.declare_entry("reaction boundaries", "", Patterns::Anything(),
+                      "'NAME, NAME, ...': boundaries whose reaction vectors go into the summary "
+                      "(reactions.NAME, N; the force of the support on the body).");
+    prm.declare_entry("point groups", "", Patterns::Anything(),
+                      "'NAME: X,Y,Z; X,Y,Z | NAME: ...': mean displacement over each set of "
+                      "points (mean_displacements.NAME, m).");
+    prm.declare_entry("stress layers", "", Patterns::Anything(),
+                      "'AXIS: E0, E1, ..., EN' (AXIS x, y or z): volume averages of the stress "
+                      "over the slabs E(k) <= AXIS < E(k+1), by quadrature point "
+                      "(stress_layers: edges, volume, sigma).");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -260,6 +275,22 @@ Parameters parse_parameters(const ParameterHandler& prm)
   for (unsigned int d = 0; d < 3; ++d)
     p.subdivisions[d] = std::stoul(subdivisions[d]);
   p.refinements = prm.get_integer(mesh, "refinements");
+  for (const auto& item : split(prm.get(mesh, "patches"), ';'))
+  {
+    const std::string where = "FEM/Mesh/patches";
+    const auto colon = item.find(':');
+    if (colon == std::string::npos)
+      fail(where, "'" + item + "' lacks ':'");
+    BoundaryPatch patch;
+    patch.name = trim(item.substr(0, colon));
+    if (patch.name.empty())
+      fail(where, "'" + item + "' has no name");
+    std::tie(patch.lower, patch.upper) = parse_segment(trim(item.substr(colon + 1)), where);
+    for (unsigned int d = 0; d < 3; ++d)
+      if (patch.upper[d] < patch.lower[d])
+        fail(where, "patch '" + patch.name + "': upper corner below lower corner");
+    p.patches.push_back(patch);
+  }
 
   const Path material{"FEM", "Material"};
   p.material = prm.get(material, "model") == "isotropic" ? MaterialModel::isotropic
@@ -369,6 +400,34 @@ Parameters parse_parameters(const ParameterHandler& prm)
   p.reaction_direction =
       parse_vector(prm.get(measure, "reaction direction"), "FEM/Measurements/reaction direction");
   p.loaded_boundary = trim(prm.get(measure, "loaded boundary"));
+  p.reaction_boundaries = split(prm.get(measure, "reaction boundaries"), ',');
+  for (const auto& group : split(prm.get(measure, "point groups"), '|'))
+  {
+    const std::string where = "FEM/Measurements/point groups";
+    const auto colon = group.find(':');
+    if (colon == std::string::npos)
+      fail(where, "'" + group + "' lacks ':'");
+    PointGroup g{trim(group.substr(0, colon)), parse_point_list(group.substr(colon + 1), where)};
+    if (g.name.empty() || g.points.empty())
+      fail(where, "'" + group + "' needs a name and at least one point");
+    p.point_groups.push_back(g);
+  }
+  if (const std::string layers = trim(prm.get(measure, "stress layers")); !layers.empty())
+  {
+    const std::string where = "FEM/Measurements/stress layers";
+    const auto colon = layers.find(':');
+    const std::string axis = colon == std::string::npos ? "" : trim(layers.substr(0, colon));
+    if (axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z')
+      fail(where, "expected 'AXIS: E0, E1, ...' with AXIS x, y or z");
+    p.stress_layer_axis = axis[0] - 'x';
+    for (const auto& edge : split(layers.substr(colon + 1), ','))
+      p.stress_layer_edges.push_back(to_double(edge, where));
+    if (p.stress_layer_edges.size() < 2)
+      fail(where, "needs at least two edges");
+    for (std::size_t k = 1; k < p.stress_layer_edges.size(); ++k)
+      if (!(p.stress_layer_edges[k] > p.stress_layer_edges[k - 1]))
+        fail(where, "edges must increase");
+  }
   if (p.deflection_direction.norm() == 0 || p.reaction_direction.norm() == 0)
     fail("FEM/Measurements", "directions must be non-zero");
   p.deflection_direction /= p.deflection_direction.norm();

@@ -61,6 +61,21 @@ struct LineLoad
   Tensor<1, 3> force; ///< total force (N), distributed uniformly along the segment
 };
 
+/// Boundary faces whose centres lie in the box [lower, upper] form the named boundary NAME
+/// (taken away from the face or group they belonged to), e.g. a support strip of a box mesh.
+struct BoundaryPatch
+{
+  std::string name;
+  Point<3> lower, upper;
+};
+
+/// Named set of points; its mean displacement goes into the summary.
+struct PointGroup
+{
+  std::string name;
+  std::vector<Point<3>> points;
+};
+
 struct PointLoad
 {
   Point<3> p;
@@ -96,6 +111,7 @@ struct Parameters
   Point<3> box_lower, box_upper;
   std::array<unsigned int, 3> subdivisions{{1, 1, 1}};
   unsigned int refinements = 0;
+  std::vector<BoundaryPatch> patches;
   // FEM/Material
   MaterialModel material = MaterialModel::isotropic;
   double youngs_modulus = 1.0;
@@ -128,6 +144,10 @@ struct Parameters
   std::string reaction_boundary;
   Tensor<1, 3> reaction_direction;
   std::string loaded_boundary;
+  std::vector<std::string> reaction_boundaries;
+  std::vector<PointGroup> point_groups;
+  int stress_layer_axis = -1; ///< -1: no layer averages
+  std::vector<double> stress_layer_edges;
   // FEM/Output
   bool write_vtu = true;
   std::string base_name = "fem";

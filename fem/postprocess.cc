@@ -8,6 +8,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -234,6 +235,44 @@ double ElasticProblem::strain_energy() const
         energy += 0.5 * (eps[q] * (stiffness * eps[q])) * fe_values.JxW(q);
     }
   return Utilities::MPI::sum(energy, mpi_communicator);
+}
+
+ElasticProblem::LayerStresses ElasticProblem::layer_stresses(const unsigned int axis,
+                                                             const std::vector<double>& edges) const
+{
+  const unsigned int n_layers = edges.size() < 2 ? 0 : edges.size() - 1;
+  const QIterated<3> quadrature(QGauss<1>(fe.degree + 1), 2);
+  FEValues<3> fe_values(mapping, fe, quadrature,
+                        update_gradients | update_quadrature_points | update_JxW_values);
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<SymmetricTensor<2, 3>> eps(quadrature.size());
+  std::vector<double> volume(n_layers, 0.0);
+  std::vector<SymmetricTensor<2, 3>> integral(n_layers);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned() && n_layers > 0)
+    {
+      fe_values.reinit(cell);
+      fe_values[displacement].get_function_symmetric_gradients(solution, eps);
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        const double x = fe_values.quadrature_point(q)[axis];
+        if (x < edges.front() || x > edges.back())
+          continue;
+        const auto k = std::min<std::size_t>(
+            std::upper_bound(edges.begin(), edges.end(), x) - edges.begin() - 1, n_layers - 1);
+        volume[k] += fe_values.JxW(q);
+        integral[k] += (stiffness * eps[q]) * fe_values.JxW(q);
+      }
+    }
+  LayerStresses layers;
+  for (unsigned int k = 0; k < n_layers; ++k)
+  {
+    layers.volume.push_back(Utilities::MPI::sum(volume[k], mpi_communicator));
+    const SymmetricTensor<2, 3> total = Utilities::MPI::sum(integral[k], mpi_communicator);
+    layers.sigma.push_back(layers.volume.back() > 0 ? total / layers.volume.back()
+                                                    : SymmetricTensor<2, 3>());
+  }
+  return layers;
 }
 
 // ------------------------------------------------------------------------------------------
