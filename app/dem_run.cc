@@ -266,6 +266,14 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                           {"sigma", sig}};
   }
   j["strain_energy"] = stresses.strain_energy;
+  if (config.measure.modulus_fixed_group.empty())
+  {
+    // no uniaxial test: the average over the specimen's extent (eq. 54 with V = extent volume)
+    const double volume = (extent.second - extent.first).prod();
+    j["rve_stress"] =
+        to_json(dem::rve_average(model.particles, stresses, extent.first, extent.second, volume));
+    j["rve_volume"] = volume;
+  }
   j["porosity"] = model.porosity;
   j["packing_volume"] = model.packing_volume;
 
