@@ -171,8 +171,10 @@ void declare_group_parameters(ParameterHandler& prm, const std::vector<std::stri
   for (const auto& name : names)
   {
     prm.enter_subsection("Group " + name);
-    prm.declare_entry("select", "index", Selection("all|index|box|face"),
+    prm.declare_entry("select", "index", Selection("all|index|box|face|nearest"),
                       "How the group is selected.");
+    prm.declare_entry("point", "0, 0, 0", vector3,
+                      "select = nearest: the one particle whose centre is nearest this point (m).");
     prm.declare_entry("indices", "", List(Integer(), 0),
                       "Particle indices (select = index); negative counts from the end.");
     prm.declare_entry("box min", "0, 0, 0", vector3, "Lower corner (m), select = box.");
@@ -318,7 +320,8 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     g.selection.kind = sel == "all"     ? GK::all
                        : sel == "index" ? GK::index
                        : sel == "box"   ? GK::box
-                                        : GK::face;
+                       : sel == "face"  ? GK::face
+                                        : GK::nearest;
     for (const auto& s : dealii::Utilities::split_string_list(prm.get("indices"), ','))
       g.selection.indices.push_back(std::stol(s));
     if (g.selection.kind == GK::index && g.selection.indices.empty())
@@ -328,6 +331,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     std::tie(g.selection.face_axis, g.selection.face_upper) =
         dem::parse_face(prm.get("face"), where + "/face");
     g.selection.face_thickness = prm.get_double("face thickness");
+    g.selection.point = get_vec3(prm, "point");
     g.fixed = dem::parse_dof_mask(prm.get("fixed"), where + "/fixed");
     g.mass = prm.get_double("mass");
     g.initial_velocity = get_vec3(prm, "initial velocity");

@@ -86,6 +86,18 @@ Group select_group(const ParticleStore& p, const std::string& name, const GroupS
     }
     break;
   }
+  case K::nearest:
+  {
+    long best = -1;
+    double best_d2 = 0;
+    for (long i = 0; i < n; ++i)
+      if (const double d2 = (p.reference_position[i] - s.point).squaredNorm();
+          best < 0 || d2 < best_d2)
+        best = i, best_d2 = d2;
+    if (best >= 0)
+      g.members.push_back(int(best));
+    break;
+  }
   }
   std::sort(g.members.begin(), g.members.end());
   g.members.erase(std::unique(g.members.begin(), g.members.end()), g.members.end());

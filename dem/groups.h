@@ -7,6 +7,8 @@
 //   face   x-|x+|y-|y+|z-|z+, thickness t
 //                          centres within t * r of that face of the specimen's bounding box
 //                          (r = particle radius; the thesis' end zones use t = 1.5)
+//   nearest point          the one particle whose reference centre is nearest the point (m):
+//                          a support that holds for any packing, seed or radius
 #include "particle_store.h"
 #include <string>
 #include <vector>
@@ -20,13 +22,15 @@ struct GroupSelection
     all,
     index,
     box,
-    face
+    face,
+    nearest
   } kind = Kind::all;
   std::vector<long> indices;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
   int face_axis = 0;       ///< 0, 1, 2
   bool face_upper = false; ///< true: the + face
   double face_thickness = 1.5;
+  Vec3 point = Vec3::Zero(); ///< nearest
 };
 
 struct Group

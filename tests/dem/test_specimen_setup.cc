@@ -66,7 +66,9 @@ TEST(SpecimenSetup, HcpPorosityApproachesTheIdealLattice)
     EXPECT_LT(m.porosity, previous);
     previous = m.porosity;
     if (r == 0.005)
+    {
       EXPECT_NEAR(m.porosity, 0.32, 0.005);
+    }
   }
 }
 
