@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 namespace dembridge::app
 {
@@ -252,11 +253,12 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                                       {"edges", h.edges},
                                       {"counts", h.counts}};
   }
+  std::optional<dem::StressLayers> layers;
   if (config.measure.stress_layers > 0)
   {
-    const auto l =
+    const auto& l = layers.emplace(
         dem::stress_layers(model.particles, stresses, extent.first, extent.second,
-                           config.measure.stress_layer_axis, config.measure.stress_layers);
+                           config.measure.stress_layer_axis, config.measure.stress_layers));
     nlohmann::json sig = nlohmann::json::array();
     for (const auto& t : l.sigma)
       sig.push_back(to_json(t));
@@ -325,16 +327,14 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["rve_stress_asymmetry"] = (rve - rve.transpose()).norm() / std::max(rve.norm(), 1e-300);
     j["rve_stress_difference"] =
         a.stress != 0 ? std::abs(rve(a.axis, a.axis) - a.stress) / std::abs(a.stress) : 0.0;
-  }
-  if (j.contains("stress_layers") && j.contains("boundary_stress") &&
-      j["boundary_stress"].get<double>() != 0)
-  {
-    // slab averages of the loading-direction normal stress over the boundary stress (Fig. 37)
-    const int c = config.measure.modulus_axis;
-    std::vector<double> ratio;
-    for (const auto& t : j["stress_layers"]["sigma"])
-      ratio.push_back(t[c][c].get<double>() / j["boundary_stress"].get<double>());
-    j["stress_layers"]["normal_stress_ratio"] = ratio;
+    if (layers && a.stress != 0)
+    {
+      // slab averages of the loading-direction normal stress over the boundary stress (Fig. 37)
+      std::vector<double> ratio;
+      for (const auto& t : layers->sigma)
+        ratio.push_back(t(a.axis, a.axis) / a.stress);
+      j["stress_layers"]["normal_stress_ratio"] = ratio;
+    }
   }
   if (!config.measure.flexural_groups.empty())
   {

@@ -276,7 +276,7 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
   // explicit solver it stays where its supports and prescribed motion put it.
   long held_rattlers = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (p.coordination[i] == 0 && supported[root[i]] && fixed[i] != 63)
+    if (p.coordination[i] == 0 && fixed[i] != 63) // unsupported ones are already held
     {
       if (loaded[root[i]])
         throw InputError(rigid_body_message + " (particle " + std::to_string(i) +

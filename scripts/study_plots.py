@@ -23,6 +23,15 @@ def fnum(v):
         return None
 
 
+def label_radius_panel(ax, packing, ylabel):
+    """Title, axes, grid and legend of one packing's panel over the particle radius."""
+    ax.set_title(LABELS[packing])
+    ax.set_xlabel("particle radius $r_p$ (mm)")
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+
+
 def plots(out, rows, solver_pref="static"):
     import matplotlib
     matplotlib.use("Agg")
@@ -122,11 +131,7 @@ def plots(out, rows, solver_pref="static"):
                     ax.plot([fnum(r["radius_mm"]) for r in pts], [fnum(r[key]) for r in pts],
                             marker=MARKERS[m], color=col, linestyle="none",
                             label=f"$\\nu_{{{key[-2:]}}}$ {m.upper()}")
-            ax.set_title(LABELS[p])
-            ax.set_xlabel("particle radius $r_p$ (mm)")
-            ax.set_ylabel("Poisson's ratio")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            label_radius_panel(ax, p, "Poisson's ratio")
         fig.suptitle("Poisson's ratios from the uniaxial compression tests (thesis Figs. 30, 31)")
         save(fig, "poisson_ratio.png")
 
@@ -143,11 +148,7 @@ def plots(out, rows, solver_pref="static"):
                     v = [(fnum(r["radius_mm"]), fnum(r.get(key))) for r in pts if fnum(r.get(key)) is not None]
                     ax.plot([a for a, _ in v], [b / 1e9 for _, b in v], marker=MARKERS[m], color=col,
                             linestyle="none", label=f"{lab} {m.upper()}")
-            ax.set_title(LABELS[p])
-            ax.set_xlabel("particle radius $r_p$ (mm)")
-            ax.set_ylabel("flexural modulus $E_f$ (GPa)")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            label_radius_panel(ax, p, "flexural modulus $E_f$ (GPa)")
         fig.suptitle("Three-point bending: flexural modulus (thesis Fig. 35)")
         save(fig, "flexural_modulus.png")
 
