@@ -3,7 +3,7 @@
 // and documentation (deal.II ParameterHandler), and its translation into dem::CaseConfig.
 // Groups and loads are named lists: `Groups/names = left, tip` declares the subsections
 // `Group left` and `Group tip`; likewise `Loads/names` and `Load NAME`.
-#include "dem/case_config.h"
+#include "dem/model/case_config.h"
 #include <deal.II/base/parameter_handler.h>
 #include <string>
 #include <vector>

@@ -1,8 +1,8 @@
 #include "dem_run.h"
-#include "dem/measurements.h"
-#include "dem/particle_stress.h"
-#include "dem/run_explicit.h"
-#include "dem/static_solver.h"
+#include "dem/measurements/measurements.h"
+#include "dem/measurements/particle_stress.h"
+#include "dem/solvers/run_explicit.h"
+#include "dem/solvers/static_solver.h"
 #include "dem_parameters.h"
 #include "particle_vtu.h"
 #include <algorithm>
@@ -68,7 +68,8 @@ public:
     if (!history_)
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
     history_ << "step,time,kinetic_energy,strain_energy,damping_energy,external_work,"
-                "energy_balance_error,max_speed";
+                "fracture_energy,contact_strain_energy,friction_energy,contact_damping_energy,"
+                "wall_work,energy_balance_error,max_speed";
     for (const auto& g : model.groups)
       for (const char* q : {"ux", "uy", "uz", "fx", "fy", "fz"})
         history_ << ',' << g.name << '_' << q;
@@ -112,7 +113,9 @@ public:
     if (e.kinetic + e.strain > 0)
       kinetic_share_.emplace_back(s.time(), e.kinetic / (e.kinetic + e.strain));
     history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
-             << e.damping << ',' << e.external << ',' << e.relative_error() << ',' << s.max_speed();
+             << e.damping << ',' << e.external << ',' << e.fracture << ',' << e.contact_strain
+             << ',' << e.friction << ',' << e.contact_damping << ',' << e.wall_work << ','
+             << e.relative_error() << ',' << s.max_speed();
     for (std::size_t g = 0; g < s.groups().size(); ++g)
     {
       const dem::Vec3 u = s.group_mean_displacement(int(g)), f = s.group_force(int(g));
@@ -226,11 +229,11 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["simulated_time"] = r.time;
     j["bond_updates_per_second"] =
         r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
-    j["energy"] = {{"kinetic", r.energy.kinetic},
-                   {"strain", r.energy.strain},
-                   {"damping", r.energy.damping},
-                   {"external_work", r.energy.external},
-                   {"initial", r.energy.initial}};
+    j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
+                   {"damping", r.energy.damping},     {"external_work", r.energy.external},
+                   {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
+                   {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
+                   {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
     j["energy_balance_error"] = r.energy_balance_error;
   }
 

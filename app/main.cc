@@ -4,7 +4,7 @@
 //   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
-#include "dem/types.h"
+#include "dem/core/types.h"
 #include "dem_run.h"
 #include "verify.h"
 #ifdef DEMBRIDGE_HAVE_FEM

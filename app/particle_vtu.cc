@@ -1,5 +1,5 @@
 #include "particle_vtu.h"
-#include "dem/particle_stress.h"
+#include "dem/measurements/particle_stress.h"
 #include <cstdio>
 #include <deal.II/base/data_out_base.h>
 #include <fstream>

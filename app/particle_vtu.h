@@ -7,8 +7,8 @@
 //    bond state (0 intact, 1 broken).
 // Snapshots go to DIR/particles_NNNNNN.vtu and DIR/bonds_NNNNNN.vtu; the .pvd time series are
 // written by finish().
-#include "dem/bond_store.h"
-#include "dem/particle_store.h"
+#include "dem/bonds/bond_store.h"
+#include "dem/core/particle_store.h"
 #include <filesystem>
 #include <string>
 #include <utility>

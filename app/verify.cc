@@ -2,9 +2,9 @@
 
 #include "verify.h"
 #include "case_file.h"
-#include "dem/groups.h"
-#include "dem/model.h"
-#include "dem/types.h"
+#include "dem/model/groups.h"
+#include "dem/model/model.h"
+#include "dem/core/types.h"
 #include "dem_parameters.h"
 #include "dem_run.h"
 #include "verify_model.h"

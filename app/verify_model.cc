@@ -16,7 +16,7 @@
 //    strip above the loaded particles; the deflections are FE displacements at the centres of the
 //    loaded and bottom particles, as the DEM measures them.
 #include "verify_model.h"
-#include "dem/groups.h"
+#include "dem/model/groups.h"
 #include <algorithm>
 #include <array>
 #include <cmath>

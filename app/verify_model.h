@@ -2,8 +2,8 @@
 // dembridge verify: the FE model of a DEM specimen test. make_plan reads the DEM case (its
 // measurement groups, supports and loads) before anything runs; fe_case writes the FE case file
 // once the DEM results are known. Internal to app/verify.cc.
-#include "dem/case_config.h"
-#include "dem/model.h"
+#include "dem/model/case_config.h"
+#include "dem/model/model.h"
 #include "verify.h"
 #include <nlohmann/json.hpp>
 #include <string>

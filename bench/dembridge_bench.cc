@@ -2,10 +2,10 @@
 // The lattice fills the thesis' 0.25 x 0.1 x 0.1 m specimen with r = 2.5 mm spheres (about
 // 25,000 particles and 140,000 bonds, every touching pair bonded with the TBBM); seeded random
 // velocities keep the bonds deforming. Prints one JSON object (and writes it with --json).
-#include "dem/bonding.h"
-#include "dem/explicit_solver.h"
-#include "dem/packings.h"
-#include "dem/time_step.h"
+#include "dem/bonds/bonding.h"
+#include "dem/solvers/explicit_solver.h"
+#include "dem/packing/packings.h"
+#include "dem/solvers/time_step.h"
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <fstream>

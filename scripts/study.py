@@ -168,7 +168,7 @@ def contact_multiplier(packing):
 
 
 def bonded_pairs(x, r, eta):
-    """Pairs (i < j) that dem/bonding.cc bonds: |x_i - x_j| <= eta (r_i + r_j) (1 + 1e-9)."""
+    """Pairs (i < j) that dem/bonds/bonding.cc bonds: |x_i - x_j| <= eta (r_i + r_j) (1 + 1e-9)."""
     n = len(x)
     h = 2.0 * eta * r.max() * (1 + 1e-9)
     c = np.floor((x - x.min(axis=0)) / h).astype(np.int64)

@@ -4,7 +4,7 @@
 #   yade -j1 -n -x bench/peers/yade_hcp_bench.py [--steps 300] [--mode bonds_only|collider|bonds_only_erased]
 #                                                [--json-out bench/peers/yade_results.json]
 #
-# The lattice is the one dembridge's HCP packing builds (dem/packings.cc): ABAB stacking,
+# The lattice is the one dembridge's HCP packing builds (dem/packing/packings.cc): ABAB stacking,
 # radius r, touching neighbours, spheres fully inside the box. Every touching pair is bonded
 # with YADE's cohesive-frictional model (CohFrictMat / CohFrictPhys / CohesionMoment law).
 #

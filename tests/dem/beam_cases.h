@@ -3,7 +3,7 @@
 //  - Thesis Appendix B: simply supported Timoshenko beam, central load (eq. B1), and the free
 //    vibration of a three-particle beam (eq. B2-B3).
 //  - Chen et al. (2022) section 3: cantilever with a tip load (eq. 29), cases 1, 3 and 5.
-#include "dem/case_config.h"
+#include "dem/model/case_config.h"
 #include <cmath>
 #include <numbers>
 

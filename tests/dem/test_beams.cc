@@ -1,6 +1,6 @@
 // Beam verification of the unified bond law against the analytical solutions of the seeds.
 #include "beam_cases.h"
-#include "dem/run_explicit.h"
+#include "dem/solvers/run_explicit.h"
 #include <gtest/gtest.h>
 #include <iostream>
 

@@ -1,11 +1,11 @@
 // Unit checks of the unified bond law: objectivity under rigid motion (large angles too),
 // momentum balance, and agreement with the thesis' 12x12 Timoshenko matrix.
-#include "dem/bond_kernel.h"
-#include "dem/bond_matrix.h"
-#include "dem/bond_model.h"
-#include "dem/bonding.h"
-#include "dem/explicit_solver.h"
-#include "dem/time_step.h"
+#include "dem/bonds/bond_kernel.h"
+#include "dem/bonds/bond_matrix.h"
+#include "dem/bonds/bond_model.h"
+#include "dem/bonds/bonding.h"
+#include "dem/solvers/explicit_solver.h"
+#include "dem/solvers/time_step.h"
 #include <gtest/gtest.h>
 #include <random>
 

@@ -1,10 +1,10 @@
 // Random close packing (dem/packing_random.h) on the thesis specimen, 0.25 x 0.1 x 0.1 m
 // (thesis section 4.1, Table 2: RCP of r = 5 mm spheres, Np = 2855-2903, porosity 0.39-0.40,
 // mean coordination 6.93-7.17), and the CSV particle file round trip.
-#include "dem/bonding.h"
-#include "dem/cell_list.h"
-#include "dem/packing_random.h"
-#include "dem/packings.h"
+#include "dem/bonds/bonding.h"
+#include "dem/packing/cell_list.h"
+#include "dem/packing/packing_random.h"
+#include "dem/packing/packings.h"
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>

@@ -1,9 +1,9 @@
 // Particle and RVE stresses (thesis eq. 54-62, dem/particle_stress.h) and the least-squares
 // modulus (eq. 64, dem/measurements.h) against closed-form values.
-#include "dem/measurements.h"
-#include "dem/model.h"
-#include "dem/particle_stress.h"
-#include "dem/static_solver.h"
+#include "dem/measurements/measurements.h"
+#include "dem/model/model.h"
+#include "dem/measurements/particle_stress.h"
+#include "dem/solvers/static_solver.h"
 #include <gtest/gtest.h>
 #include <numbers>
 

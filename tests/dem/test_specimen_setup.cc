@@ -1,6 +1,6 @@
 // Specimen set-up (thesis section 4.1): porosity of the packing box and the density scaling of
 // eq. 63, rho_p = rho / (1 - porosity), which gives the specimen the continuum's mass.
-#include "dem/model.h"
+#include "dem/model/model.h"
 #include <gtest/gtest.h>
 #include <numbers>
 

@@ -2,8 +2,8 @@
 // seeds (paper eq. 29 and Table 4, thesis eq. B1), against the explicit solver's damped
 // equilibrium on a bonded lattice (issue 3: within 0.1 %), and its singular-system error.
 #include "beam_cases.h"
-#include "dem/run_explicit.h"
-#include "dem/static_solver.h"
+#include "dem/solvers/run_explicit.h"
+#include "dem/solvers/static_solver.h"
 #include <gtest/gtest.h>
 #include <iostream>
 

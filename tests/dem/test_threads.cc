@@ -1,9 +1,9 @@
 // The slab partition of the bond loop (explicit_solver.cc) must not change the physics: two
 // threads give the one-thread trajectory up to summation order (round-off).
-#include "dem/bonding.h"
-#include "dem/explicit_solver.h"
-#include "dem/packings.h"
-#include "dem/time_step.h"
+#include "dem/bonds/bonding.h"
+#include "dem/solvers/explicit_solver.h"
+#include "dem/packing/packings.h"
+#include "dem/solvers/time_step.h"
 #include <gtest/gtest.h>
 #include <random>
 

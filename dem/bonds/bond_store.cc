@@ -1,0 +1,33 @@
+#include "dem/bonds/bond_store.h"
+
+namespace dembridge::dem
+{
+void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis, BondModel m,
+                    const BondStiffness& k)
+{
+  a.push_back(ia);
+  b.push_back(ib);
+  rest_length.push_back(length);
+  rest_axis.push_back(axis);
+  kn.push_back(k.kn);
+  ks.push_back(k.ks);
+  ktor.push_back(k.ktor);
+  kben.push_back(k.kben);
+  contact_fraction.push_back(k.contact_fraction);
+  radius.push_back(k.radius);
+  damping_force.push_back(0.0);
+  damping_moment.push_back(0.0);
+  model.push_back(m);
+  state.push_back(BondState::intact);
+  force.push_back(Vec3::Zero());
+  moment.push_back(Vec3::Zero());
+}
+
+BondStiffness BondStore::stiffness(std::size_t k) const
+{
+  BondStiffness s;
+  s.kn = kn[k], s.ks = ks[k], s.ktor = ktor[k], s.kben = kben[k];
+  s.contact_fraction = contact_fraction[k], s.radius = radius[k];
+  return s;
+}
+} // namespace dembridge::dem

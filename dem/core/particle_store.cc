@@ -1,0 +1,31 @@
+#include "dem/core/particle_store.h"
+#include <numbers>
+
+namespace dembridge::dem
+{
+void ParticleStore::add(const Vec3& x, double r, double rho)
+{
+  position.push_back(x);
+  reference_position.push_back(x);
+  velocity.push_back(Vec3::Zero());
+  angular_velocity.push_back(Vec3::Zero());
+  orientation.push_back(Quat::Identity());
+  force.push_back(Vec3::Zero());
+  torque.push_back(Vec3::Zero());
+  radius.push_back(r);
+  mass.push_back(0.0);
+  inertia.push_back(0.0);
+  dof_mask.push_back(0);
+  prescribed_velocity.push_back(Vec3::Zero());
+  prescribed_angular_velocity.push_back(Vec3::Zero());
+  group_mask.push_back(0);
+  coordination.push_back(0);
+  set_mass(size() - 1, rho * 4.0 / 3.0 * std::numbers::pi * r * r * r);
+}
+
+void ParticleStore::set_mass(std::size_t i, double m)
+{
+  mass[i] = m;
+  inertia[i] = 0.4 * m * radius[i] * radius[i]; // thesis eq. 42
+}
+} // namespace dembridge::dem

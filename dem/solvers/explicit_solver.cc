@@ -1,0 +1,403 @@
+#include "dem/solvers/explicit_solver.h"
+#include "dem/bonds/bond_kernel.h"
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace dembridge::dem
+{
+ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
+                               std::vector<Group> groups, std::vector<Constraint> constraints,
+                               std::vector<Load> loads, const SolverSettings& settings)
+    : p_(particles), b_(bonds), groups_(std::move(groups)), constraints_(std::move(constraints)),
+      loads_(std::move(loads)), settings_(settings)
+{
+  if (!(settings_.time_step > 0))
+    throw InputError("Simulation/time step: must be positive");
+  if (settings_.particle_damping < 0 || settings_.particle_damping >= 1)
+    throw InputError("Damping/particle damping: must lie in [0, 1)");
+  settings_.threads = std::max(1, settings_.threads);
+  std::vector<char> touched(p_.size(), 0);
+  for (const auto& c : constraints_)
+    for (int i : groups_.at(c.group).members)
+      touched[i] = 1;
+  for (const auto& l : loads_)
+    if (l.prescribes_motion())
+      for (int i : groups_.at(l.group).members)
+        touched[i] = 1;
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (touched[i])
+      constrained_.push_back(int(i));
+  constrained_v_.resize(constrained_.size());
+  constrained_w_.resize(constrained_.size());
+  constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
+  for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
+    for (int i : groups_[g].members)
+      p_.group_mask[i] |= 1u << g;
+  partition_bonds();
+  for (std::size_t k = 0; k < b_.size(); ++k)
+    dashpots_ = dashpots_ || b_.damping_force[k] > 0 || b_.damping_moment[k] > 0;
+  if (dashpots_)
+  {
+    dashpot_force_.assign(p_.size(), Vec3::Zero());
+    dashpot_torque_.assign(p_.size(), Vec3::Zero());
+  }
+  // energy_.initial is set by the first step, from the leapfrog state at t_0 (integrate())
+}
+
+// Spatial slabs along the axis that follows the particle memory order; see the header for the
+// phases.
+void ExplicitSolver::partition_bonds()
+{
+  const std::size_t nb = b_.size();
+  const int T = settings_.threads;
+  phases_.assign(4, {});
+  if (T == 1 || nb == 0 || p_.size() < 2)
+  {
+    phases_[3].push_back({0, nb});
+    return;
+  }
+  Vec3 lo = p_.position[0], hi = p_.position[0];
+  for (const auto& x : p_.position)
+    lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  int axis;
+  // Slab along the axis that follows the particles' memory order most closely, so that each
+  // thread writes its own contiguous block of particles (slabs that cut every lattice row make
+  // the threads share cache lines: 1.3x instead of 1.85x on two threads).
+  std::array<long, 3> monotone{};
+  for (std::size_t i = 0; i + 1 < p_.size(); ++i)
+    for (int d = 0; d < 3; ++d)
+      monotone[d] += p_.position[i + 1][d] >= p_.position[i][d];
+  axis = int(std::max_element(monotone.begin(), monotone.end()) - monotone.begin());
+  if ((hi - lo)[axis] <= 0)
+    (hi - lo).maxCoeff(&axis);
+  std::vector<double> coord(p_.size());
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    coord[i] = p_.position[i][axis];
+  std::vector<double> sorted = coord;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<double> cuts; // slab s holds coord in [cuts[s-1], cuts[s])
+  for (int s = 1; s < T; ++s)
+    cuts.push_back(sorted[sorted.size() * s / T]);
+  auto slab = [&](int i)
+  { return int(std::upper_bound(cuts.begin(), cuts.end(), coord[i]) - cuts.begin()); };
+  // bucket: slab s interior -> s; cut (s, s+1) -> T + s; other -> 2T
+  std::vector<int> bucket(nb);
+  for (std::size_t k = 0; k < nb; ++k)
+  {
+    const int sa = slab(b_.a[k]), sb = slab(b_.b[k]);
+    bucket[k] = sa == sb ? sa : (std::abs(sa - sb) == 1 ? T + std::min(sa, sb) : 2 * T);
+  }
+  std::vector<std::size_t> order(nb);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return bucket[x] < bucket[y]; });
+  auto permute = [&](auto& v)
+  {
+    auto copy = v;
+    for (std::size_t k = 0; k < nb; ++k)
+      v[k] = copy[order[k]];
+  };
+  permute(b_.a), permute(b_.b), permute(b_.rest_length), permute(b_.rest_axis);
+  permute(b_.kn), permute(b_.ks), permute(b_.ktor), permute(b_.kben);
+  permute(b_.contact_fraction), permute(b_.radius), permute(b_.damping_force);
+  permute(b_.damping_moment), permute(b_.model), permute(b_.state), permute(b_.force);
+  permute(b_.moment), permute(bucket);
+  auto range_of = [&](int bk)
+  {
+    auto first = std::lower_bound(bucket.begin(), bucket.end(), bk) - bucket.begin();
+    auto last = std::upper_bound(bucket.begin(), bucket.end(), bk) - bucket.begin();
+    return std::pair<std::size_t, std::size_t>(first, last);
+  };
+  for (int s = 0; s < T; ++s)
+    phases_[0].push_back(range_of(s));
+  for (int s = 0; s + 1 < T; ++s)
+    phases_[1 + (s % 2)].push_back(range_of(T + s));
+  phases_[3].push_back(range_of(2 * T));
+}
+
+template <bool record, bool dashpots>
+void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain)
+{
+  const Vec3* x = p_.position.data();
+  const Quat* q = p_.orientation.data();
+  const Vec3* v = p_.velocity.data();
+  const Vec3* w = p_.angular_velocity.data();
+  Vec3* F = p_.force.data();
+  Vec3* M = p_.torque.data();
+  Vec3* Fd = dashpot_force_.data();
+  Vec3* Md = dashpot_torque_.data();
+  BondForces f;
+  for (std::size_t k = begin; k < end; ++k)
+  {
+    if (b_.state[k] != BondState::intact)
+      continue;
+    const int ia = b_.a[k], ib = b_.b[k];
+    bond_law<dashpots>(x[ia].data(), x[ib].data(), q[ia].coeffs().data(), q[ib].coeffs().data(),
+                       v[ia].data(), v[ib].data(), w[ia].data(), w[ib].data(),
+                       {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k],
+                        b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
+                        b_.damping_moment[k]},
+                       f);
+    bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
+    if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
+      bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
+    if constexpr (record)
+    {
+      strain += f.strain_energy;
+      b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+      b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+    }
+  }
+}
+
+template <bool record, bool dashpots> void ExplicitSolver::compute_bond_forces()
+{
+  double strain = 0;
+  for (int phase = 0; phase < 3; ++phase)
+  {
+    const auto& ranges = phases_[phase];
+    if (ranges.empty())
+      continue;
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain)
+    for (std::size_t r = 0; r < ranges.size(); ++r)
+      bond_range<record, dashpots>(ranges[r].first, ranges[r].second, strain);
+  }
+  for (const auto& range : phases_[3])
+    bond_range<record, dashpots>(range.first, range.second, strain);
+  if constexpr (record)
+    energy_.strain = strain;
+}
+
+void ExplicitSolver::apply_loads()
+{
+  const double t = time_, dt = settings_.time_step;
+  // Supports and prescribed motion, evaluated at the half step the velocity update targets.
+  for (std::size_t c = 0; c < constrained_.size(); ++c)
+  {
+    const int i = constrained_[c];
+    p_.dof_mask[i] = 0;
+    p_.prescribed_velocity[i].setZero();
+    p_.prescribed_angular_velocity[i].setZero();
+    constrained_v_[c] = p_.velocity[i];
+    constrained_w_[c] = p_.angular_velocity[i];
+  }
+  for (const auto& c : constraints_)
+    for (int i : groups_[c.group].members)
+      p_.dof_mask[i] |= c.dofs;
+  for (const auto& l : loads_)
+  {
+    const auto& members = groups_[l.group].members;
+    if (l.prescribes_motion())
+    {
+      if (!l.active(t + 0.5 * dt))
+        continue;
+      const Vec3 value = l.value * l.factor(t + 0.5 * dt);
+      const bool rot = l.kind == LoadKind::angular_velocity;
+      for (int i : members)
+        for (int k = 0; k < 3; ++k)
+          if (l.components & (1u << k))
+          {
+            p_.dof_mask[i] |= std::uint8_t(1u << (k + (rot ? 3 : 0)));
+            (rot ? p_.prescribed_angular_velocity[i] : p_.prescribed_velocity[i])[k] = value[k];
+          }
+    }
+    else
+    {
+      const double inv_n = 1.0 / double(members.size());
+      const Vec3 share = l.value * (l.factor(t) * inv_n);
+      // trapezoidal work 1/2 (F^{n-1} + F^n) . (x^n - x^{n-1}) (thesis eq. 52)
+      const Vec3 mean_share =
+          steps_ > 0 ? Vec3(0.5 * (share + l.value * (l.factor(t - dt) * inv_n))) : Vec3::Zero();
+      const bool moment = l.kind == LoadKind::moment;
+      for (int i : members)
+      {
+        (moment ? p_.torque[i] : p_.force[i]) += share;
+        energy_.external += dt * mean_share.dot(moment ? p_.angular_velocity[i] : p_.velocity[i]);
+      }
+    }
+  }
+}
+
+template <bool record> void ExplicitSolver::integrate()
+{
+  const double dt = settings_.time_step, gamma = settings_.particle_damping;
+  const std::size_t n = p_.size();
+  double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0;
+  auto& x = p_.position;
+  auto& v = p_.velocity;
+  auto& w = p_.angular_velocity;
+  auto& q = p_.orientation;
+  auto& F = p_.force;
+  auto& M = p_.torque;
+#pragma omp parallel for num_threads(settings_.threads) schedule(static) reduction(+ : dissipation, kinetic, lead) reduction(max : vmax2)
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double m = p_.mass[i], I = p_.inertia[i];
+    const std::uint8_t mask = p_.dof_mask[i];
+    const Vec3 v0 = v[i], w0 = w[i];
+    Vec3 v1, w1;
+    if (mask == 0 && gamma == 0)
+    {
+      // the common case, kept branch-free: eq. 40 and eq. 44
+      v1 = v0 + (dt / m) * F[i];
+      w1 = w0 + (dt / I) * M[i];
+    }
+    else
+    {
+      // One DOF, translation (eq. 40) or rotation (eq. 44): a constrained DOF takes its
+      // prescribed velocity and `load` becomes the support reaction; a free one feels particle
+      // damping (paper eq. 11-12).
+      auto update =
+          [&](bool constrained, double prescribed, double before, double& load, double inertia)
+      {
+        if (constrained)
+        {
+          load = inertia * (prescribed - before) / dt - load;
+          return prescribed;
+        }
+        const double damp = gamma * std::abs(load) * (before > 0 ? 1.0 : (before < 0 ? -1.0 : 0.0));
+        const double after = before + dt * (load - damp) / inertia;
+        dissipation += damp * 0.5 * (before + after) * dt;
+        if constexpr (record)
+          lead += damp * 0.5 * after * dt;
+        return after;
+      };
+      for (int k = 0; k < 3; ++k)
+      {
+        v1[k] = update(mask & (1u << k), p_.prescribed_velocity[i][k], v0[k], F[i][k], m);
+        w1[k] =
+            update(mask & (1u << (k + 3)), p_.prescribed_angular_velocity[i][k], w0[k], M[i][k], I);
+      }
+    }
+    if (dashpots_)
+    {
+      // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
+      const Vec3& fd = dashpot_force_[i];
+      const Vec3& md = dashpot_torque_[i];
+      dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
+      if constexpr (record)
+        lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
+      dashpot_force_[i].setZero();
+      dashpot_torque_[i].setZero();
+    }
+    v[i] = v1;
+    w[i] = w1;
+    x[i] += dt * v1; // eq. 41
+    // q <- exp(dt w / 2) q, with a series for small angles (eq. 45 in quaternion form)
+    const Vec3 h = 0.5 * dt * w1;
+    const double a2 = h.squaredNorm();
+    double c, s;
+    if (a2 < 1e-6)
+    {
+      c = 1.0 - a2 / 2.0 + a2 * a2 / 24.0;
+      s = 1.0 - a2 / 6.0 + a2 * a2 / 120.0;
+    }
+    else
+    {
+      const double a = std::sqrt(a2);
+      c = std::cos(a);
+      s = std::sin(a) / a;
+    }
+    q[i] = (Quat(c, s * h.x(), s * h.y(), s * h.z()) * q[i]).normalized();
+    if constexpr (record)
+    {
+      // eq. 49, time-centred at t_n as 1/2 m v^{n-1/2}.v^{n+1/2}: the form the leapfrog
+      // scheme conserves exactly for a linear undamped system
+      kinetic += 0.5 * m * v0.dot(v1) + 0.5 * I * w0.dot(w1);
+      vmax2 = std::max(vmax2, v1.squaredNorm());
+    }
+  }
+  // Damping work (particle damping and dashpots): the running sum of d^n . (v^{n-1/2} +
+  // v^{n+1/2})/2 dt runs half a
+  // step ahead of t_n; the trapezoidal value at t_n drops the last half term ("lead").
+  damping_work_ += dissipation;
+  if (steps_ == 0)
+  {
+    // The balance starts at t_0 with the energy the leapfrog state holds there (shadow kinetic
+    // energy + strain); damping work before t_0 (the first half step) is not counted.
+    energy_.initial = kinetic + energy_.strain;
+    damping_work_ = lead;
+  }
+  if constexpr (record)
+  {
+    energy_.damping = damping_work_ - lead;
+    energy_.kinetic = kinetic;
+    max_speed_ = std::sqrt(vmax2);
+  }
+  // Work of supports with prescribed motion: 1/2 (R^{n-1} + R^n) . (x^n - x^{n-1}).
+  for (std::size_t c = 0; c < constrained_.size(); ++c)
+  {
+    const int i = constrained_[c];
+    const std::uint8_t mask = p_.dof_mask[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double R = mask & (1u << k) ? F[i][k] : 0.0;
+      const double Rm = mask & (1u << (k + 3)) ? M[i][k] : 0.0;
+      energy_.external += 0.5 * (constrained_reaction_[c][k] + R) * constrained_v_[c][k] * dt;
+      energy_.external += 0.5 * (constrained_reaction_[c][k + 3] + Rm) * constrained_w_[c][k] * dt;
+      constrained_reaction_[c][k] = R;
+      constrained_reaction_[c][k + 3] = Rm;
+    }
+  }
+}
+
+void ExplicitSolver::step(bool record)
+{
+  record = record || steps_ == 0; // the first step fixes the initial energy
+  // Forces are zeroed here rather than at the end of integrate() because the previous step's
+  // values (support reactions) are read between steps; the dashpot arrays are zeroed in
+  // integrate() right after their last use.
+  const long n = long(p_.size());
+#pragma omp parallel for num_threads(settings_.threads) schedule(static)
+  for (long i = 0; i < n; ++i)
+  {
+    p_.force[i].setZero();
+    p_.torque[i].setZero();
+  }
+  if (dashpots_)
+    record ? compute_bond_forces<true, true>() : compute_bond_forces<false, true>();
+  else
+    record ? compute_bond_forces<true, false>() : compute_bond_forces<false, false>();
+  apply_loads();
+  for (auto* c : contributions_)
+    c->add_forces(p_, time_, settings_.time_step, record);
+  if (record)
+    integrate<true>();
+  else
+    integrate<false>();
+  for (auto* c : contributions_)
+    c->after_update(p_, time_, settings_.time_step, record);
+  if (record)
+  {
+    energy_.contact_strain = energy_.friction = energy_.contact_damping = energy_.wall_work = 0;
+    for (auto* c : contributions_)
+      c->add_energy(energy_);
+    if (steps_ == 0) // stored energy at t_0 includes what the contributions hold
+      energy_.initial += energy_.contact_strain;
+  }
+  time_ += settings_.time_step;
+  ++steps_;
+}
+
+Vec3 ExplicitSolver::group_force(int group) const
+{
+  return total_force(p_, groups_.at(group));
+}
+
+Vec3 ExplicitSolver::group_mean_displacement(int group) const
+{
+  return mean_displacement(p_, groups_.at(group));
+}
+
+double ExplicitSolver::last_ramp_end() const
+{
+  double t = 0;
+  for (const auto& l : loads_)
+    t = std::max(t, l.ramp_time);
+  return t;
+}
+} // namespace dembridge::dem

@@ -1,0 +1,129 @@
+#include "dem/solvers/run_explicit.h"
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+namespace dembridge::dem
+{
+std::optional<double> oscillation_frequency(const std::vector<double>& t,
+                                            const std::vector<double>& u)
+{
+  if (u.size() < 4)
+    return std::nullopt;
+  const double mean = std::accumulate(u.begin(), u.end(), 0.0) / double(u.size());
+  std::vector<double> crossings;
+  for (std::size_t k = 1; k < u.size(); ++k)
+  {
+    const double a = u[k - 1] - mean, b = u[k] - mean;
+    if (a < 0 && b >= 0)
+      crossings.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-a) / (b - a));
+  }
+  if (crossings.size() < 3)
+    return std::nullopt;
+  // Whole periods only, so the mean of the window is not biased by a partial period.
+  return double(crossings.size() - 1) / (crossings.back() - crossings.front());
+}
+
+RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
+                       const RunSchedule& sched)
+{
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  ExplicitSolver solver(model.particles, model.bonds, model.groups, model.constraints, model.loads,
+                        {model.time_step, c.run.particle_damping, c.run.threads});
+  for (const auto& contribution : model.contributions)
+    solver.add_contribution(contribution.get());
+  RunResult res;
+  const int deflection_group =
+      c.measure.deflection_group.empty()
+          ? -1
+          : model.group_index(c.measure.deflection_group, "Measurements/deflection group");
+  const int frequency_group =
+      c.measure.frequency_group.empty()
+          ? -1
+          : model.group_index(c.measure.frequency_group, "Measurements/frequency group");
+  const Vec3 dir = c.measure.deflection_direction.normalized();
+  double loads_end = 0; // free vibration starts when every finite load has ended
+  for (const auto& l : model.loads)
+    if (std::isfinite(l.end_time))
+      loads_end = std::max(loads_end, l.end_time);
+  std::vector<double> ft, fu;
+  const long expected = long(std::min(double(c.run.max_steps), c.run.end_time / model.time_step));
+  if (frequency_group >= 0)
+  {
+    ft.reserve(std::size_t(std::max(0L, expected)) + 2);
+    fu.reserve(ft.capacity());
+  }
+
+  double worst_error = 0, largest_seen = 0;
+  auto track_energy = [&](const ExplicitSolver& s)
+  {
+    largest_seen = std::max(largest_seen, s.energy().largest());
+    if (largest_seen > 0)
+      worst_error = std::max(worst_error, s.energy().error() / largest_seen);
+  };
+
+  // State at t = 0: one recording evaluation without advancing is not possible with a
+  // leapfrog state, so the first record is after step 1.
+  const long quasi_static_check = std::max<long>(1, std::min<long>(100, sched.record_interval));
+  auto last_progress = start;
+  res.stop_reason = "end time";
+  while (true)
+  {
+    const long n = solver.steps() + 1;
+    const bool at_end_time = solver.time() + 0.5 * model.time_step >= c.run.end_time;
+    const bool record = (n % sched.record_interval == 0) || n == 1 || at_end_time ||
+                        (c.run.quasi_static_speed > 0 && n % quasi_static_check == 0);
+    solver.step(record);
+    if (frequency_group >= 0 && solver.time() >= loads_end)
+    {
+      ft.push_back(solver.time());
+      fu.push_back(solver.group_mean_displacement(frequency_group).dot(dir));
+    }
+    bool stop = false;
+    if (at_end_time)
+      stop = true;
+    else if (solver.steps() >= c.run.max_steps)
+      stop = true, res.stop_reason = "step limit";
+    else if (record && c.run.quasi_static_speed > 0 && solver.time() > solver.last_ramp_end() &&
+             solver.time() > loads_end && solver.max_speed() < c.run.quasi_static_speed)
+      stop = true, res.stop_reason = "quasi-static";
+    if (record)
+    {
+      track_energy(solver);
+      if (n % sched.record_interval == 0 || n == 1 || stop)
+        observer.on_record(solver);
+      if (n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0))
+        observer.on_snapshot(solver);
+    }
+    if (!std::isfinite(solver.energy().damping) || !std::isfinite(solver.energy().external))
+      throw std::runtime_error("the simulation became unstable at step " +
+                               std::to_string(solver.steps()) +
+                               " (t = " + std::to_string(solver.time()) + " s): non-finite energy");
+    const auto now = clock::now();
+    if (std::chrono::duration<double>(now - last_progress).count() > sched.progress_seconds)
+    {
+      last_progress = now;
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double rate = solver.steps() / wall;
+      const double frac = std::min(1.0, solver.time() / c.run.end_time);
+      observer.on_progress(solver, frac, rate, rate > 0 ? (expected - solver.steps()) / rate : 0);
+    }
+    if (stop)
+      break;
+  }
+  res.steps = solver.steps();
+  res.time = solver.time();
+  res.energy = solver.energy();
+  res.energy_balance_error = worst_error;
+  if (deflection_group >= 0)
+  {
+    res.deflection_vector = solver.group_mean_displacement(deflection_group);
+    res.deflection = res.deflection_vector.dot(dir);
+  }
+  if (frequency_group >= 0)
+    res.natural_frequency = oscillation_frequency(ft, fu);
+  res.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  return res;
+}
+} // namespace dembridge::dem

@@ -1,0 +1,53 @@
+#pragma once
+// Drives an ExplicitSolver through a case: stop criteria (end time, step limit, quasi-static
+// rest), periodic records (history) and snapshots (ParaView), progress reports, and the
+// measured quantities of the case (deflection of a group, natural frequency, energy balance).
+#include "dem/model/case_config.h"
+#include "dem/solvers/explicit_solver.h"
+#include "dem/model/model.h"
+#include <optional>
+#include <string>
+
+namespace dembridge::dem
+{
+/// Receives what the run produces; the app implements it (CSV, VTU, console).
+class RunObserver
+{
+public:
+  virtual ~RunObserver() = default;
+  virtual void on_record(const ExplicitSolver&) {}   ///< energies and bond forces are fresh
+  virtual void on_snapshot(const ExplicitSolver&) {} ///< likewise, at snapshot steps
+  virtual void on_progress(const ExplicitSolver&, double /*fraction*/, double /*steps_per_s*/,
+                           double /*eta_s*/)
+  {
+  }
+};
+
+struct RunSchedule
+{
+  long record_interval = 100;  ///< steps between history records
+  long snapshot_interval = 0;  ///< steps between snapshots; 0: first and last only
+  double progress_seconds = 2; ///< wall time between progress reports
+};
+
+struct RunResult
+{
+  long steps = 0;
+  double time = 0;
+  double wall_seconds = 0;
+  std::string stop_reason;
+  EnergyBalance energy;
+  double energy_balance_error = 0; ///< max over the run of |balance| / largest component so far
+  std::optional<double> deflection;
+  Vec3 deflection_vector = Vec3::Zero();
+  std::optional<double> natural_frequency; ///< Hz
+};
+
+RunResult run_explicit(Model& model, const CaseConfig& config, RunObserver& observer,
+                       const RunSchedule& schedule);
+
+/// Frequency (Hz) of a sampled oscillation from its upward mean crossings, with linear
+/// interpolation between samples; nullopt with fewer than two full periods.
+std::optional<double> oscillation_frequency(const std::vector<double>& t,
+                                            const std::vector<double>& u);
+} // namespace dembridge::dem
