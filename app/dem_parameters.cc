@@ -104,8 +104,8 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.enter_subsection("Simulation");
   prm.declare_entry("solver", "explicit", Selection("explicit|static"),
                     "explicit: Verlet dynamics with damping; static: the equilibrium of the "
-                    "linearised bond network, solved directly (loads at full value, prescribed "
-                    "velocities read as displacements).");
+                    "linearised bond network, solved directly (loads at full value, displacement "
+                    "loads at their value; velocity loads are refused).");
   prm.declare_entry("time step", "auto", Anything(),
                     "Time step (s), or 'auto' for 'time step safety' x the critical step.");
   prm.declare_entry("time step safety", "0.8", Double(0, 1),
@@ -114,6 +114,11 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry(
       "quasi-static speed", "0", Double(0),
       "Stop after the load ramps once the largest particle speed is below this (m/s); 0: off.");
+  prm.declare_entry(
+      "equilibrium ratio", "0", Double(0),
+      "Stop after the load ramps once the unbalanced-force ratio (mean net force on free "
+      "particles / mean bond force, PFC's convention) is below this; 0: off. Unlike the "
+      "quasi-static speed it cannot fire at the turning point of an oscillation.");
   prm.declare_entry("max steps", "100000000", Integer(1), "Step limit.");
   prm.declare_entry("threads", "1", Integer(1, 256), "Threads for the force and update loops.");
   prm.leave_subsection();
@@ -196,12 +201,18 @@ void declare_load_parameters(ParameterHandler& prm, const std::vector<std::strin
   {
     prm.enter_subsection("Load " + name);
     prm.declare_entry("group", "", Anything(), "Group the load acts on.");
-    prm.declare_entry("type", "force", Selection("force|moment|velocity|angular velocity"),
+    prm.declare_entry("type", "force",
+                      Selection("force|moment|velocity|angular velocity|displacement"),
                       "force/moment: group total (N, N·m) shared equally; velocity/angular "
-                      "velocity: prescribed per particle (m/s, rad/s).");
+                      "velocity: prescribed per particle (m/s, rad/s), explicit solver only; "
+                      "displacement: prescribed per particle (m), reached at the end of the ramp "
+                      "and held, read the same by the static and explicit solvers.");
+    prm.declare_entry("ramp profile", "linear", Selection("linear|smooth"),
+                      "Displacement loads: linear (constant velocity over the ramp) or smooth "
+                      "(3 s^2 - 2 s^3: zero velocity at both ends).");
     prm.declare_entry("value", "0, 0, 0", vector3, "Full value, reached at the end of the ramp.");
     prm.declare_entry("components", "x, y, z", List(Selection("x|y|z"), 1, 3),
-                      "Prescribed components (velocity types).");
+                      "Prescribed components (velocity and displacement types).");
     prm.declare_entry("ramp time", "0", Double(0), "Linear ramp from 0 over this time (s).");
     prm.declare_entry("end time", "inf", Anything(),
                       "Time (s) at which the load is removed / the DOFs released; 'inf': never.");
@@ -301,6 +312,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     c.run.safety = prm.get_double("time step safety");
     c.run.end_time = prm.get_double("end time");
     c.run.quasi_static_speed = prm.get_double("quasi-static speed");
+    c.run.equilibrium_ratio = prm.get_double("equilibrium ratio");
     c.run.max_steps = prm.get_integer("max steps");
     c.run.threads = prm.get_integer("threads");
   }
@@ -352,10 +364,13 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     if (lc.group.empty())
       throw dem::InputError(where + "/group: a load needs a group");
     const std::string type = prm.get("type");
-    lc.load.kind = type == "force"      ? dem::LoadKind::force
-                   : type == "moment"   ? dem::LoadKind::moment
-                   : type == "velocity" ? dem::LoadKind::velocity
-                                        : dem::LoadKind::angular_velocity;
+    lc.load.kind = type == "force"          ? dem::LoadKind::force
+                   : type == "moment"       ? dem::LoadKind::moment
+                   : type == "velocity"     ? dem::LoadKind::velocity
+                   : type == "displacement" ? dem::LoadKind::displacement
+                                            : dem::LoadKind::angular_velocity;
+    lc.load.profile =
+        prm.get("ramp profile") == "smooth" ? dem::RampProfile::smooth : dem::RampProfile::linear;
     lc.load.value = get_vec3(prm, "value");
     lc.load.components = 0;
     for (const auto& comp : dealii::Utilities::split_string_list(prm.get("components"), ','))

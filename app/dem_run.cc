@@ -69,7 +69,7 @@ public:
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
     history_ << "step,time,kinetic_energy,strain_energy,damping_energy,external_work,"
                 "fracture_energy,contact_strain_energy,friction_energy,contact_damping_energy,"
-                "wall_work,energy_balance_error,max_speed";
+                "wall_work,energy_balance_error,max_speed,unbalanced_force_ratio";
     for (const auto& g : model.groups)
       for (const char* q : {"ux", "uy", "uz", "fx", "fy", "fz"})
         history_ << ',' << g.name << '_' << q;
@@ -115,7 +115,7 @@ public:
     history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
              << e.damping << ',' << e.external << ',' << e.fracture << ',' << e.contact_strain
              << ',' << e.friction << ',' << e.contact_damping << ',' << e.wall_work << ','
-             << e.relative_error() << ',' << s.max_speed();
+             << e.relative_error() << ',' << s.max_speed() << ',' << s.unbalanced_force_ratio();
     for (std::size_t g = 0; g < s.groups().size(); ++g)
     {
       const dem::Vec3 u = s.group_mean_displacement(int(g)), f = s.group_force(int(g));
@@ -235,6 +235,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                    {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
                    {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
     j["energy_balance_error"] = r.energy_balance_error;
+    j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
   }
 
   double mean_coordination = 0;

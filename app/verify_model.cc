@@ -141,7 +141,7 @@ Plan make_plan(const dem::CaseConfig& c, const dem::Model& model, const std::str
       throw std::runtime_error("Loads: no load acts on the loaded end group '" + p.loaded_group +
                                "'");
     for (const auto& l : loads)
-      if (l.load.kind == dem::LoadKind::velocity)
+      if (l.load.kind == dem::LoadKind::velocity || l.load.kind == dem::LoadKind::displacement)
       {
         p.displacement_control = true;
         p.load_components += components(l.load.components);

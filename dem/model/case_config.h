@@ -67,6 +67,8 @@ struct RunConfig
   double safety = 0.8;           ///< fraction of the critical step used by "auto"
   double end_time = 1.0;         ///< s
   double quasi_static_speed = 0; ///< m/s; >0: stop after the ramps once max speed < this
+  /// >0: stop after the ramps once the unbalanced-force ratio (ExplicitSolver) is below this
+  double equilibrium_ratio = 0;
   long max_steps = 100000000;
   int threads = 1;
   double bond_damping_ratio = 0; ///< xi (thesis eq. 37)

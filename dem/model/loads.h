@@ -2,9 +2,16 @@
 // Supports and loads on particle groups.
 //  - Constraint: DOFs of every particle of a group held fixed (velocity zero).
 //  - Load: a force or moment (total over the group, shared equally by its particles), or a
-//    prescribed velocity or angular velocity (per particle, on the chosen components).
-// Every load follows a linear ramp from 0 at t = 0 to its full value at t = ramp_time, stays
-// there, and is removed at end_time (a prescribed DOF is then released).
+//    prescribed velocity, angular velocity or displacement (per particle, on the chosen
+//    components).
+// Every load follows a ramp from 0 at t = 0 to its full value at t = ramp_time, stays there, and
+// is removed at end_time (a prescribed DOF is then released). Forces, moments and velocities
+// ramp linearly. A displacement u(t) = value f(t / ramp_time) follows the ramp profile:
+//   linear  f(s) = s                  (constant velocity value / ramp_time: strain-rate control)
+//   smooth  f(s) = 3 s^2 - 2 s^3      (zero velocity at both ends: no shock, quasi-static)
+// and both solvers read it the same way: the static solver as the displacement u(t) (final
+// state: value), the explicit solver as the velocity (u(t + dt) - u(t)) / dt over each step, so
+// the displacement is exact at every step.
 #include "dem/core/types.h"
 #include <limits>
 #include <string>
@@ -22,7 +29,14 @@ enum class LoadKind
   force,
   moment,
   velocity,
-  angular_velocity
+  angular_velocity,
+  displacement
+};
+
+enum class RampProfile
+{
+  linear,
+  smooth
 };
 
 struct Load
@@ -34,6 +48,7 @@ struct Load
   std::uint8_t components = 7; ///< prescribed components (bits x, y, z) for velocities
   double ramp_time = 0.0;      ///< s
   double end_time = std::numeric_limits<double>::infinity(); ///< s
+  RampProfile profile = RampProfile::linear;                 ///< displacement loads
 
   /// Fraction of the full value at time t (0 after end_time).
   double factor(double t) const
@@ -42,10 +57,20 @@ struct Load
       return 0.0;
     return ramp_time > 0 && t < ramp_time ? t / ramp_time : 1.0;
   }
+  /// Displacement loads: the fraction f(t / ramp_time) of `value` reached at time t (held
+  /// after the ramp; an instantaneous step for ramp_time 0).
+  double displacement_fraction(double t) const
+  {
+    if (!(ramp_time > 0) || t >= ramp_time)
+      return 1.0;
+    const double s = t > 0 ? t / ramp_time : 0.0;
+    return profile == RampProfile::smooth ? s * s * (3.0 - 2.0 * s) : s;
+  }
   bool active(double t) const { return t < end_time; }
   bool prescribes_motion() const
   {
-    return kind == LoadKind::velocity || kind == LoadKind::angular_velocity;
+    return kind == LoadKind::velocity || kind == LoadKind::angular_velocity ||
+           kind == LoadKind::displacement;
   }
 };
 } // namespace dembridge::dem

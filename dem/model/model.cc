@@ -103,6 +103,9 @@ Model build_model(const CaseConfig& c)
       throw InputError(where + "/end time: must be positive");
     if (!l.value.allFinite())
       throw InputError(where + "/value: must be finite");
+    if (l.kind == LoadKind::displacement && !(l.ramp_time > 0) && !c.run.static_solver)
+      throw InputError(where + "/ramp time: an explicit run needs a displacement load to ramp " +
+                       "over a positive time (a jump is an infinite velocity)");
     m.loads.push_back(l);
   }
 

@@ -2,6 +2,7 @@
 #include "dem/bonds/bond_kernel.h"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #ifdef _OPENMP
 #include <omp.h>
@@ -195,7 +196,12 @@ void ExplicitSolver::apply_loads()
     {
       if (!l.active(t + 0.5 * dt))
         continue;
-      const Vec3 value = l.value * l.factor(t + 0.5 * dt);
+      // a displacement load moves its DOFs exactly by u(t + dt) - u(t) over the step
+      const Vec3 value =
+          l.kind == LoadKind::displacement
+              ? Vec3(l.value *
+                     ((l.displacement_fraction(t + dt) - l.displacement_fraction(t)) / dt))
+              : Vec3(l.value * l.factor(t + 0.5 * dt));
       const bool rot = l.kind == LoadKind::angular_velocity;
       for (int i : members)
         for (int k = 0; k < 3; ++k)
@@ -226,19 +232,30 @@ template <bool record> void ExplicitSolver::integrate()
 {
   const double dt = settings_.time_step, gamma = settings_.particle_damping;
   const std::size_t n = p_.size();
-  double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0;
+  double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0, unbalanced = 0;
+  long n_free = 0;
   auto& x = p_.position;
   auto& v = p_.velocity;
   auto& w = p_.angular_velocity;
   auto& q = p_.orientation;
   auto& F = p_.force;
   auto& M = p_.torque;
-#pragma omp parallel for num_threads(settings_.threads) schedule(static) reduction(+ : dissipation, kinetic, lead) reduction(max : vmax2)
+#pragma omp parallel for num_threads(settings_.threads) schedule(static) reduction(+ : dissipation, kinetic, lead, unbalanced, n_free) reduction(max : vmax2)
   for (std::size_t i = 0; i < n; ++i)
   {
     const double m = p_.mass[i], I = p_.inertia[i];
     const std::uint8_t mask = p_.dof_mask[i];
     const Vec3 v0 = v[i], w0 = w[i];
+    if constexpr (record)
+      if ((mask & 7u) != 7u) // the net force on the free translations (before it turns into
+      {                      // reactions on the constrained ones)
+        Vec3 free = F[i];
+        for (int k = 0; k < 3; ++k)
+          if (mask & (1u << k))
+            free[k] = 0;
+        unbalanced += free.norm();
+        ++n_free;
+      }
     Vec3 v1, w1;
     if (mask == 0 && gamma == 0)
     {
@@ -327,6 +344,7 @@ template <bool record> void ExplicitSolver::integrate()
     energy_.damping = damping_work_ - lead;
     energy_.kinetic = kinetic;
     max_speed_ = std::sqrt(vmax2);
+    unbalanced_mean_ = n_free > 0 ? unbalanced / double(n_free) : 0.0;
   }
   // Work of supports with prescribed motion: 1/2 (R^{n-1} + R^n) . (x^n - x^{n-1}).
   for (std::size_t c = 0; c < constrained_.size(); ++c)
@@ -373,6 +391,13 @@ void ExplicitSolver::step(bool record)
     c->after_update(p_, time_, settings_.time_step, record);
   if (record)
   {
+    double bond_force = 0;
+    long n_intact = 0;
+    for (std::size_t k = 0; k < b_.size(); ++k)
+      if (b_.state[k] == BondState::intact)
+        bond_force += b_.force[k].norm(), ++n_intact;
+    unbalanced_ratio_ = bond_force > 0 ? unbalanced_mean_ * double(n_intact) / bond_force
+                                       : std::numeric_limits<double>::infinity();
     energy_.contact_strain = energy_.friction = energy_.contact_damping = energy_.wall_work = 0;
     for (auto* c : contributions_)
       c->add_energy(energy_);

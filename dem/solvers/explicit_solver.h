@@ -47,6 +47,12 @@ public:
   double time_step() const { return settings_.time_step; }
   const EnergyBalance& energy() const { return energy_; }
   double max_speed() const { return max_speed_; }
+  /// Unbalanced-force ratio at the last record (PFC's convention): the mean magnitude of the
+  /// net force on the free translational DOFs of the particles over the mean magnitude of the
+  /// intact bonds' forces. It falls towards 0 only in equilibrium; unlike the largest speed it
+  /// stays large at the turning point of an oscillation, where the velocities vanish but the
+  /// forces do not.
+  double unbalanced_force_ratio() const { return unbalanced_ratio_; }
   const std::vector<Group>& groups() const { return groups_; }
   const std::vector<Load>& loads() const { return loads_; }
 
@@ -83,6 +89,8 @@ private:
   bool dashpots_ = false;   ///< any bond with a dashpot
   std::vector<Vec3> dashpot_force_, dashpot_torque_; ///< dashpot resultants per particle
   double max_speed_ = 0;
+  double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
+  double unbalanced_ratio_ = 0;
   std::vector<int> constrained_;    ///< particles touched by any constraint or motion load
   std::vector<Vec3> constrained_v_; ///< their velocity before the step (work of supports)
   std::vector<Vec3> constrained_w_;

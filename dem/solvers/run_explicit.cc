@@ -73,7 +73,8 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     const long n = solver.steps() + 1;
     const bool at_end_time = solver.time() + 0.5 * model.time_step >= c.run.end_time;
     const bool record = (n % sched.record_interval == 0) || n == 1 || at_end_time ||
-                        (c.run.quasi_static_speed > 0 && n % quasi_static_check == 0);
+                        ((c.run.quasi_static_speed > 0 || c.run.equilibrium_ratio > 0) &&
+                         n % quasi_static_check == 0);
     solver.step(record);
     if (frequency_group >= 0 && solver.time() >= loads_end)
     {
@@ -88,6 +89,9 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     else if (record && c.run.quasi_static_speed > 0 && solver.time() > solver.last_ramp_end() &&
              solver.time() > loads_end && solver.max_speed() < c.run.quasi_static_speed)
       stop = true, res.stop_reason = "quasi-static";
+    else if (record && c.run.equilibrium_ratio > 0 && solver.time() > solver.last_ramp_end() &&
+             solver.time() > loads_end && solver.unbalanced_force_ratio() < c.run.equilibrium_ratio)
+      stop = true, res.stop_reason = "equilibrium";
     if (record)
     {
       track_energy(solver);
@@ -116,6 +120,7 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
   res.time = solver.time();
   res.energy = solver.energy();
   res.energy_balance_error = worst_error;
+  res.unbalanced_force_ratio = solver.unbalanced_force_ratio();
   if (deflection_group >= 0)
   {
     res.deflection_vector = solver.group_mean_displacement(deflection_group);

@@ -3,8 +3,8 @@
 // rest), periodic records (history) and snapshots (ParaView), progress reports, and the
 // measured quantities of the case (deflection of a group, natural frequency, energy balance).
 #include "dem/model/case_config.h"
-#include "dem/solvers/explicit_solver.h"
 #include "dem/model/model.h"
+#include "dem/solvers/explicit_solver.h"
 #include <optional>
 #include <string>
 
@@ -37,7 +37,8 @@ struct RunResult
   double wall_seconds = 0;
   std::string stop_reason;
   EnergyBalance energy;
-  double energy_balance_error = 0; ///< max over the run of |balance| / largest component so far
+  double energy_balance_error = 0;   ///< max over the run of |balance| / largest component so far
+  double unbalanced_force_ratio = 0; ///< at the last record (ExplicitSolver)
   std::optional<double> deflection;
   Vec3 deflection_vector = Vec3::Zero();
   std::optional<double> natural_frequency; ///< Hz

@@ -236,7 +236,13 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
     const int offset = l.kind == LoadKind::moment || l.kind == LoadKind::angular_velocity ? 3 : 0;
     if (l.prescribes_motion())
     {
-      const Vec3 d = final_state ? l.value : Vec3(l.value * motion_integral(l, t));
+      if (final_state && l.kind != LoadKind::displacement)
+        throw InputError("Load " + l.name + "/type: the static solver's final state has no " +
+                         "displacement for a prescribed velocity (it grows without end): use " +
+                         "type = displacement");
+      const Vec3 d = l.kind == LoadKind::displacement
+                         ? Vec3(l.value * (final_state ? 1.0 : l.displacement_fraction(t)))
+                         : Vec3(l.value * motion_integral(l, t));
       for (int i : members)
         for (int k = 0; k < 3; ++k)
           if (l.components & (1u << k))

@@ -1,8 +1,8 @@
 // Particle and RVE stresses (thesis eq. 54-62, dem/particle_stress.h) and the least-squares
 // modulus (eq. 64, dem/measurements.h) against closed-form values.
 #include "dem/measurements/measurements.h"
-#include "dem/model/model.h"
 #include "dem/measurements/particle_stress.h"
+#include "dem/model/model.h"
 #include "dem/solvers/static_solver.h"
 #include <gtest/gtest.h>
 #include <numbers>
@@ -52,7 +52,8 @@ Model compressed_cubic_block(Vec3 box)
   LoadConfig push;
   push.group = "pushed";
   push.load.name = "push";
-  push.load.kind = LoadKind::velocity; // static solver: a displacement
+  push.load.kind = LoadKind::displacement;
+  c.run.static_solver = true;
   push.load.components = 1;
   push.load.value = Vec3(-1e-6, 0, 0);
   c.loads = {push};
