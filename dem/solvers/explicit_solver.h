@@ -66,7 +66,11 @@ public:
 
   /// Adds forces beside the bonds (contacts, walls, coupling; step_contribution.h). The
   /// contribution must outlive the solver; add before the first step.
-  void add_contribution(StepContribution* contribution) { contributions_.push_back(contribution); }
+  void add_contribution(StepContribution* contribution)
+  {
+    contribution->attach(p_, b_);
+    contributions_.push_back(contribution);
+  }
 
 private:
   template <bool record, bool dashpots> void compute_bond_forces();

@@ -16,10 +16,16 @@
 
 namespace dembridge::dem
 {
+struct BondStore;
+
 class StepContribution
 {
 public:
   virtual ~StepContribution() = default;
+  /// Called once when the solver takes the contribution, after the solver has put the bonds in
+  /// their final order: a contribution that reads particles or bonds (contacts skip bonded
+  /// pairs) binds to them here.
+  virtual void attach(const ParticleStore& /*p*/, const BondStore& /*bonds*/) {}
   /// Adds forces and torques at time t_n (positions x^n, velocities v^{n-1/2}).
   virtual void add_forces(ParticleStore& p, double time, double dt, bool record) = 0;
   /// After the update: velocities v^{n+1/2}, positions x^{n+1}; time is still t_n.

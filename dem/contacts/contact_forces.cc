@@ -1,0 +1,441 @@
+#include "dem/contacts/contact_forces.h"
+#include "dem/bonds/bond_store.h"
+#include "dem/contacts/contact_kernel.h"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace dembridge::dem
+{
+ContactForces::ContactForces(const ContactMaterial& material, const std::vector<WallConfig>& walls)
+    : material_(material)
+{
+  material_.validate();
+  if (!material_.enabled())
+    throw InputError("Contacts/model: contacts are off (model = none)" +
+                     std::string(walls.empty() ? "" : ", but walls need a contact law"));
+  for (const auto& w : walls)
+  {
+    w.validate();
+    walls_.emplace_back(w);
+  }
+  const double zeta = material_.damping_ratio();
+  damping_ = zeta > 0;
+  // linear: the same springs against a wall as between two particles
+  const double kt = material_.tangential_stiffness > 0 ? material_.tangential_stiffness
+                                                       : 2.0 / 7.0 * material_.normal_stiffness;
+  linear_pair_ = linear_wall_ = {material_.normal_stiffness, kt, zeta};
+  // Hertz-Mindlin: two equal spheres, or a sphere and a rigid wall (hertz_mindlin.h)
+  const double E = material_.youngs_modulus, nu = material_.poisson_ratio;
+  const double G = E / (2.0 * (1.0 + nu));
+  hertz_pair_ = {E / (2.0 * (1.0 - nu * nu)), G / (2.0 * (2.0 - nu)), -zeta};
+  hertz_wall_ = {E / (1.0 - nu * nu), G / (2.0 - nu), -zeta};
+  rolling_ = {material_.rolling_friction, material_.rolling_stiffness};
+  monitor_.enabled = material_.monitor;
+  const std::size_t nw = walls_.size();
+  wall_offset_built_.assign(nw, 0.0);
+  wall_force_.assign(nw, Vec3::Zero());
+  wall_force_prev_.assign(nw, Vec3::Zero());
+  wall_damping_force_.assign(nw, Vec3::Zero());
+  point_now_.assign(nw, Vec3::Zero());
+}
+
+void ContactForces::attach(const ParticleStore& p, const BondStore& bonds)
+{
+  bonds_ = &bonds;
+  const std::size_t n = p.size();
+  // bonds of each particle, built once (bonds are never added during a run; the solver has
+  // already put them in their final order)
+  bond_start_.assign(n + 1, 0);
+  for (std::size_t k = 0; k < bonds.size(); ++k)
+    ++bond_start_[std::size_t(bonds.a[k]) + 1], ++bond_start_[std::size_t(bonds.b[k]) + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    bond_start_[i + 1] += bond_start_[i];
+  bond_partner_.resize(std::size_t(bond_start_[n]));
+  bond_index_.resize(bond_partner_.size());
+  std::vector<std::int32_t> fill(bond_start_.begin(), bond_start_.end() - 1);
+  for (std::size_t k = 0; k < bonds.size(); ++k)
+  {
+    const auto a = std::size_t(bonds.a[k]), b = std::size_t(bonds.b[k]);
+    bond_partner_[std::size_t(fill[a])] = bonds.b[k], bond_index_[std::size_t(fill[a]++)] = int(k);
+    bond_partner_[std::size_t(fill[b])] = bonds.a[k], bond_index_[std::size_t(fill[b]++)] = int(k);
+  }
+  double skin = material_.skin;
+  if (!(skin > 0)) // default: a fifth of the smallest radius
+  {
+    skin = std::numeric_limits<double>::infinity();
+    for (double r : p.radius)
+      skin = std::min(skin, 0.2 * r);
+    if (!std::isfinite(skin))
+      skin = 0;
+  }
+  list_.set_skin(skin);
+  if (damping_)
+  {
+    damping_force_.assign(n, Vec3::Zero());
+    damping_torque_.assign(n, Vec3::Zero());
+  }
+}
+
+void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
+{
+  const auto& x = p.position;
+  const auto& r = p.radius;
+  list_.build(x, r);
+  const std::size_t np = list_.size();
+  const auto& prev = list_.previous_index();
+  std::swap(xi_, xi_old_), std::swap(theta_, theta_old_), std::swap(touching_, touching_old_);
+  xi_.resize(np), theta_.resize(np), touching_.resize(np), pair_bond_.resize(np);
+  const auto& first = list_.first();
+  const auto& second = list_.second();
+  for (std::size_t k = 0; k < np; ++k)
+  {
+    const std::int32_t o = prev[k];
+    xi_[k] = o >= 0 ? xi_old_[std::size_t(o)] : Vec3::Zero();
+    theta_[k] = o >= 0 ? theta_old_[std::size_t(o)] : Vec3::Zero();
+    touching_[k] = o >= 0 ? touching_old_[std::size_t(o)] : 0;
+    std::int32_t bond = -1;
+    const auto i = std::size_t(first[k]);
+    for (std::int32_t q = bond_start_[i]; q < bond_start_[i + 1]; ++q)
+      if (bond_partner_[std::size_t(q)] == second[k])
+        bond = bond_index_[std::size_t(q)];
+    pair_bond_[k] = bond;
+  }
+
+  // Sphere-wall candidates: gap below the skin; sorted by (wall, particle) and merged with the
+  // previous candidates to carry their springs over.
+  std::swap(wall_of_, wall_of_old_), std::swap(wall_particle_, wall_particle_old_);
+  std::swap(wall_xi_, wall_xi_old_), std::swap(wall_theta_, wall_theta_old_);
+  std::swap(wall_touching_, wall_touching_old_);
+  wall_of_.clear(), wall_particle_.clear(), wall_xi_.clear(), wall_theta_.clear();
+  wall_touching_.clear();
+  std::size_t o = 0;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+  {
+    const Vec3& n = walls_[w].normal;
+    wall_offset_built_[w] = point_now_[w].dot(n);
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      if ((x[i] - point_now_[w]).dot(n) - r[i] >= list_.skin())
+        continue;
+      while (o < wall_of_old_.size() &&
+             (std::size_t(wall_of_old_[o]) < w ||
+              (std::size_t(wall_of_old_[o]) == w && std::size_t(wall_particle_old_[o]) < i)))
+        ++o;
+      const bool kept = o < wall_of_old_.size() && std::size_t(wall_of_old_[o]) == w &&
+                        std::size_t(wall_particle_old_[o]) == i;
+      wall_of_.push_back(std::int32_t(w));
+      wall_particle_.push_back(std::int32_t(i));
+      wall_xi_.push_back(kept ? wall_xi_old_[o] : Vec3::Zero());
+      wall_theta_.push_back(kept ? wall_theta_old_[o] : Vec3::Zero());
+      wall_touching_.push_back(kept ? wall_touching_old_[o] : 0);
+    }
+  }
+}
+
+void ContactForces::add_forces(ParticleStore& p, double time, double dt, bool record)
+{
+  if (!bonds_)
+    throw std::logic_error("ContactForces: add it to a solver (attach) before the first step");
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    point_now_[w] = walls_[w].point(time);
+  bool stale = list_.needs_rebuild(p.position);
+  for (std::size_t w = 0; w < walls_.size() && !stale; ++w)
+    stale =
+        std::abs(point_now_[w].dot(walls_[w].normal) - wall_offset_built_[w]) > 0.5 * list_.skin();
+  if (stale)
+    rebuild(p, time);
+  search_seconds_ += std::chrono::duration<double>(clock::now() - start).count();
+
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    wall_force_[w].setZero(), wall_damping_force_[w].setZero();
+  const bool rolling = rolling_.friction > 0;
+  auto with_law = [&]<class Law>()
+  {
+    if (rolling)
+    {
+      if (damping_)
+        record ? compute<Law, true, true, true>(p, time, dt)
+               : compute<Law, true, true, false>(p, time, dt);
+      else
+        record ? compute<Law, true, false, true>(p, time, dt)
+               : compute<Law, true, false, false>(p, time, dt);
+    }
+    else
+    {
+      if (damping_)
+        record ? compute<Law, false, true, true>(p, time, dt)
+               : compute<Law, false, true, false>(p, time, dt);
+      else
+        record ? compute<Law, false, false, true>(p, time, dt)
+               : compute<Law, false, false, false>(p, time, dt);
+    }
+  };
+  if (material_.model == ContactModel::linear)
+    with_law.operator()<LinearSpringDashpot>();
+  else
+    with_law.operator()<HertzMindlin>();
+  if (monitor_.enabled)
+    update_monitor(p, time, dt);
+}
+
+template <class Law, bool rolling, bool damping, bool record>
+void ContactForces::compute(ParticleStore& p, double time, double dt)
+{
+  const Law* pair_law;
+  const Law* wall_law;
+  if constexpr (std::is_same_v<Law, LinearSpringDashpot>)
+    pair_law = &linear_pair_, wall_law = &linear_wall_;
+  else
+    pair_law = &hertz_pair_, wall_law = &hertz_wall_;
+  const Vec3* x = p.position.data();
+  const Vec3* v = p.velocity.data();
+  const Vec3* w = p.angular_velocity.data();
+  const double* r = p.radius.data();
+  const double* m = p.mass.data();
+  Vec3* F = p.force.data();
+  Vec3* T = p.torque.data();
+  const BondState* state = bonds_->state.data();
+  const std::int32_t* first = list_.first().data();
+  const std::int32_t* second = list_.second().data();
+  const double mu = material_.friction;
+  double stored = 0, slip = 0, dissipation = 0;
+  std::size_t active = 0;
+
+  auto note = [&](bool wall, std::int32_t a, std::int32_t b, double delta, double force, double v_n)
+  {
+    monitor_.max_overlap = std::max(monitor_.max_overlap, delta);
+    monitor_.max_force = std::max(monitor_.max_force, force);
+    if (monitor_.started)
+      return;
+    monitor_.started = true;
+    monitor_.wall = wall, monitor_.a = a, monitor_.b = b;
+    monitor_.approach_speed = std::max(0.0, -v_n);
+    monitor_.start_time = monitor_.approach_speed > 0
+                              ? std::max(time - dt, time - delta / monitor_.approach_speed)
+                              : time;
+    monitor_.last_overlap = delta;
+  };
+
+  const std::size_t np = list_.size();
+  for (std::size_t k = 0; k < np; ++k)
+  {
+    const std::int32_t bond = pair_bond_[k];
+    if (bond >= 0 && state[bond] != BondState::broken)
+      continue; // an intact bond carries this pair
+    const auto i = std::size_t(first[k]), j = std::size_t(second[k]);
+    const Vec3 d = x[j] - x[i];
+    const double dist2 = d.squaredNorm(), reach = r[i] + r[j];
+    if (dist2 >= reach * reach || dist2 == 0.0)
+    {
+      if (touching_[k])
+        xi_[k].setZero(), theta_[k].setZero(), touching_[k] = 0;
+      continue;
+    }
+    const double dist = std::sqrt(dist2), delta = reach - dist;
+    const Vec3 n = d / dist;
+    const ContactInput in{n,
+                          delta,
+                          r[i] - 0.5 * delta,
+                          r[j] - 0.5 * delta,
+                          v[i],
+                          w[i],
+                          v[j],
+                          w[j],
+                          0.5 * (w[i] + w[j]).dot(n),
+                          r[i] * r[j] / reach,
+                          m[i] * m[j] / (m[i] + m[j])};
+    const ContactOutput out =
+        contact_force<Law, rolling>(*pair_law, in, mu, rolling_, dt, xi_[k], theta_[k]);
+    touching_[k] = 1;
+    ++active;
+    F[j] += out.force;
+    F[i] -= out.force;
+    T[i] += out.torque_i;
+    T[j] += out.torque_j;
+    slip += out.slip;
+    if constexpr (damping)
+    {
+      // dashpot resultants per particle, for the dashpot's work with v^{n+1/2}
+      dissipation += out.damping;
+      const Vec3 arm_force = n.cross(out.damping_force);
+      damping_force_[j] += out.damping_force;
+      damping_torque_[j] -= in.arm_j * arm_force;
+      damping_force_[i] -= out.damping_force;
+      damping_torque_[i] -= in.arm_i * arm_force;
+    }
+    if constexpr (record)
+      stored += out.energy;
+    if (monitor_.enabled)
+      note(false, std::int32_t(i), std::int32_t(j), delta, out.normal_force, (v[j] - v[i]).dot(n));
+  }
+
+  for (std::size_t e = 0; e < wall_particle_.size(); ++e)
+  {
+    const auto iw = std::size_t(wall_of_[e]), i = std::size_t(wall_particle_[e]);
+    const Vec3& n = walls_[iw].normal;
+    const double gap = (x[i] - point_now_[iw]).dot(n) - r[i];
+    if (gap >= 0.0)
+    {
+      if (wall_touching_[e])
+        wall_xi_[e].setZero(), wall_theta_[e].setZero(), wall_touching_[e] = 0;
+      continue;
+    }
+    const double delta = -gap;
+    const Vec3 v_wall = (point_now_[iw] - walls_[iw].point(time - dt)) / dt; // v^{n-1/2}
+    const ContactInput in{n,   delta, 0.0, r[i] - 0.5 * delta, v_wall, Vec3::Zero(), v[i], w[i],
+                          0.0, r[i],  m[i]};
+    const ContactOutput out =
+        contact_force<Law, rolling>(*wall_law, in, mu, rolling_, dt, wall_xi_[e], wall_theta_[e]);
+    wall_touching_[e] = 1;
+    ++active;
+    F[i] += out.force;
+    T[i] += out.torque_j;
+    wall_force_[iw] -= out.force;
+    slip += out.slip;
+    if constexpr (damping)
+    {
+      dissipation += out.damping;
+      damping_force_[i] += out.damping_force;
+      damping_torque_[i] -= in.arm_j * n.cross(out.damping_force);
+      wall_damping_force_[iw] += out.damping_force;
+    }
+    if constexpr (record)
+      stored += out.energy;
+    if (monitor_.enabled)
+      note(true, std::int32_t(iw), std::int32_t(i), delta, out.normal_force,
+           (v[i] - v_wall).dot(n));
+  }
+
+  slip_ += slip;
+  damping_work_ += 0.5 * dt * dissipation; // the half with v^{n-1/2}
+  if constexpr (record)
+    stored_ = stored;
+  n_active_ = active;
+  contact_updates_ += long(active);
+}
+
+void ContactForces::update_monitor(const ParticleStore& p, double time, double dt)
+{
+  auto& mon = monitor_;
+  if (!mon.started || mon.finished)
+    return;
+  const auto b = std::size_t(mon.b);
+  double overlap, v_n;
+  if (mon.wall)
+  {
+    const Wall& w = walls_[std::size_t(mon.a)];
+    overlap = p.radius[b] - (p.position[b] - point_now_[std::size_t(mon.a)]).dot(w.normal);
+    v_n =
+        (p.velocity[b] - (point_now_[std::size_t(mon.a)] - w.point(time - dt)) / dt).dot(w.normal);
+  }
+  else
+  {
+    const auto a = std::size_t(mon.a);
+    const Vec3 d = p.position[b] - p.position[a];
+    overlap = p.radius[a] + p.radius[b] - d.norm();
+    v_n = (p.velocity[b] - p.velocity[a]).dot(d.normalized());
+  }
+  if (overlap > 0)
+  {
+    mon.last_overlap = overlap;
+    return;
+  }
+  mon.finished = true;
+  mon.end_time = time - dt + dt * mon.last_overlap / (mon.last_overlap - overlap);
+  mon.rebound_speed = v_n;
+}
+
+void ContactForces::after_update(const ParticleStore& p, double time, double dt, bool /*record*/)
+{
+  if (damping_)
+  {
+    // the dashpots' work with v^{n+1/2}: the second half of d^n . (v^{n-1/2} + v^{n+1/2}) dt/2
+    double lead = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      lead -= damping_force_[i].dot(p.velocity[i]) + damping_torque_[i].dot(p.angular_velocity[i]);
+      damping_force_[i].setZero();
+      damping_torque_[i].setZero();
+    }
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+      lead += wall_damping_force_[w].dot(walls_[w].point(time + dt) - point_now_[w]) / dt;
+    damping_lead_ = 0.5 * dt * lead;
+    damping_work_ += damping_lead_;
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+  {
+    // trapezoidal work of the wall on the particles over [t_{n-1}, t_n]
+    const Vec3 on_particles = -wall_force_[w];
+    wall_work_ +=
+        0.5 * (wall_force_prev_[w] + on_particles).dot(point_now_[w] - walls_[w].point(time - dt));
+    wall_force_prev_[w] = on_particles;
+  }
+}
+
+void ContactForces::add_energy(EnergyBalance& e) const
+{
+  e.contact_strain += stored_;
+  e.friction += slip_;
+  // at t_n the dashpot work counts d^n . v^{n-1/2} dt/2 but not yet the half with v^{n+1/2}
+  e.contact_damping += damping_work_ - damping_lead_;
+  e.wall_work += wall_work_;
+}
+
+// Stability limit of the contact springs. For a spring k between bodies of inverse masses
+// 1/m_i, 1/m_j the frequency is omega^2 = k (1/m_i + 1/m_j); a tangential spring at the surface
+// also turns both spheres (1/m + R^2/I each), a rolling spring only turns them (1/I each). Every
+// pair is bounded by its lighter partner twice, and a wall contact by the sphere alone with the
+// wall's constants. Central differences with the dashpot from v^{n-1/2} are stable for
+// dt <= 2/omega (sqrt(1 + zeta^2) - zeta) (time_step.h).
+//   linear: the given k_n, k_t; k_r from k_n;
+//   Hertz-Mindlin: the stiffnesses grow with the overlap, evaluated at a reference overlap of
+//   5 % of R* (beyond it an impact has left Hertz's small-strain theory), and not above the
+//   Rayleigh step pi R sqrt(rho/G) / (0.1631 nu + 0.8766) that EDEM recommends.
+double ContactForces::critical_time_step(const ParticleStore& p) const
+{
+  constexpr double reference_overlap = 0.05;
+  double dt = std::numeric_limits<double>::infinity();
+  const bool hertz = material_.model == ContactModel::hertz_mindlin;
+  const double zeta =
+      hertz ? std::sqrt(5.0 / 6.0) * std::abs(hertz_pair_.beta) : material_.damping_ratio();
+  const double damping_factor = std::sqrt(1.0 + zeta * zeta) - zeta;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const double m = p.mass[i], I = p.inertia[i], R = p.radius[i];
+    const double tangential_compliance = 1.0 / m + R * R / I;
+    double omega2 = 0;
+    for (int wall = 0; wall < 2; ++wall)
+    {
+      const double share = wall ? 1.0 : 2.0; // both partners as light as this one
+      const double r_eff = wall ? R : 0.5 * R;
+      double kn, kt;
+      if (hertz)
+      {
+        const HertzMindlin& law = wall ? hertz_wall_ : hertz_pair_;
+        const auto resp = law(reference_overlap * r_eff, r_eff, m);
+        kn = resp.stiffness, kt = resp.kt;
+      }
+      else
+        kn = linear_pair_.kn, kt = linear_pair_.kt;
+      omega2 = std::max({omega2, share * kn / m, share * kt * tangential_compliance});
+      if (rolling_.friction > 0)
+        omega2 = std::max(omega2, share * rolling_.spring(kn, r_eff) / I);
+    }
+    if (omega2 > 0)
+      dt = std::min(dt, 2.0 / std::sqrt(omega2) * damping_factor);
+    if (hertz)
+    {
+      const double rho = m / (4.0 / 3.0 * std::numbers::pi * R * R * R);
+      const double nu = material_.poisson_ratio;
+      const double G = material_.youngs_modulus / (2.0 * (1.0 + nu));
+      dt = std::min(dt, std::numbers::pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766));
+    }
+  }
+  return dt;
+}
+} // namespace dembridge::dem

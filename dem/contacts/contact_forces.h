@@ -1,0 +1,105 @@
+#pragma once
+// Post-failure contacts and rigid walls as one step contribution (solvers/step_contribution.h).
+//
+// Each step, at t_n:
+//   1. the Verlet list (neighbour_list.h) and the wall lists are rebuilt if some particle moved
+//      more than half the skin, or a wall moved more than half the skin along its normal, since
+//      the last build; the springs of the contacts that persist are carried over;
+//   2. every listed pair without an intact bond (never bonded, or broken: BondStore::state) whose
+//      spheres overlap, and every sphere that overlaps a wall, gets the contact force of the
+//      chosen law (contact_kernel.h: linear_spring_dashpot.h or hertz_mindlin.h, with Coulomb
+//      friction and optional rolling resistance). The law is a template parameter chosen once
+//      per step: no virtual call and no branch on the law per contact.
+// Energy (dem/core/energy.h), booked so that the leapfrog balance closes:
+//   contact_strain   springs' stored energy at x^n (recording steps);
+//   friction         slip of the tangential and rolling springs (tangential_spring.h);
+//   contact_damping  dashpot work d^n . (v^{n-1/2} + v^{n+1/2}) / 2 dt, as the bond dashpots;
+//   wall_work        work of the moving walls, 1/2 (F^{n-1} + F^n) . (u_w^n - u_w^{n-1}), F the
+//                    walls' force on the particles.
+// A wall's force (force_on_wall) is the sum of the forces the particles exert on it.
+#include "dem/contacts/contact_material.h"
+#include "dem/contacts/contact_monitor.h"
+#include "dem/contacts/hertz_mindlin.h"
+#include "dem/contacts/linear_spring_dashpot.h"
+#include "dem/contacts/neighbour_list.h"
+#include "dem/contacts/rolling_resistance.h"
+#include "dem/contacts/wall.h"
+#include "dem/solvers/step_contribution.h"
+#include <vector>
+
+namespace dembridge::dem
+{
+struct BondStore;
+
+class ContactForces : public StepContribution
+{
+public:
+  /// Validates the material and the walls (InputError naming Contacts/... or Wall NAME/...).
+  ContactForces(const ContactMaterial& material, const std::vector<WallConfig>& walls);
+
+  void attach(const ParticleStore& p, const BondStore& bonds) override;
+  void add_forces(ParticleStore& p, double time, double dt, bool record) override;
+  void after_update(const ParticleStore& p, double time, double dt, bool record) override;
+  void add_energy(EnergyBalance& e) const override;
+  /// Stability limit of the contacts' springs (see contact_forces.cc).
+  double critical_time_step(const ParticleStore& p) const override;
+
+  const ContactMaterial& material() const { return material_; }
+  /// Contacts (pairs and sphere-wall) that touched at the last step.
+  std::size_t active_contacts() const { return n_active_; }
+  std::size_t walls() const { return walls_.size(); }
+  const Wall& wall(std::size_t w) const { return walls_[w]; }
+  /// Force the particles exerted on wall w at the last step (N).
+  const Vec3& force_on_wall(std::size_t w) const { return wall_force_[w]; }
+  const ContactMonitor& monitor() const { return monitor_; }
+
+  // Throughput and cost of the neighbour search (benchmarks)
+  long list_builds() const { return list_.builds(); }
+  std::size_t listed_pairs() const { return list_.size(); }
+  double search_seconds() const { return search_seconds_; }
+  long contact_updates() const { return contact_updates_; }
+
+private:
+  template <class Law, bool rolling, bool damping, bool record>
+  void compute(ParticleStore& p, double time, double dt);
+  void rebuild(const ParticleStore& p, double time);
+  void update_monitor(const ParticleStore& p, double time, double dt);
+
+  ContactMaterial material_;
+  std::vector<Wall> walls_;
+  LinearSpringDashpot linear_pair_, linear_wall_;
+  HertzMindlin hertz_pair_, hertz_wall_;
+  RollingResistance rolling_;
+  bool damping_ = false;
+
+  const BondStore* bonds_ = nullptr;
+  // bonds of each particle (CSR): partner and bond index
+  std::vector<std::int32_t> bond_start_, bond_partner_, bond_index_;
+
+  // particle pairs: the Verlet list and beside it, per pair, the bond joining it (or -1) and
+  // the contact history
+  NeighbourList list_;
+  std::vector<std::int32_t> pair_bond_;
+  std::vector<Vec3> xi_, theta_, xi_old_, theta_old_;
+  std::vector<std::uint8_t> touching_, touching_old_;
+
+  // sphere-wall candidates, sorted by (wall, particle), with their history
+  std::vector<std::int32_t> wall_of_, wall_particle_, wall_of_old_, wall_particle_old_;
+  std::vector<Vec3> wall_xi_, wall_theta_, wall_xi_old_, wall_theta_old_;
+  std::vector<std::uint8_t> wall_touching_, wall_touching_old_;
+  std::vector<double> wall_offset_built_; ///< point . normal at the last build
+
+  // per step
+  std::vector<Vec3> wall_force_, wall_force_prev_, wall_damping_force_;
+  std::vector<Vec3> point_now_;                      ///< wall points at t_n
+  std::vector<Vec3> damping_force_, damping_torque_; ///< dashpot resultants per particle
+  std::size_t n_active_ = 0;
+
+  // energy
+  double stored_ = 0, slip_ = 0, damping_work_ = 0, damping_lead_ = 0, wall_work_ = 0;
+
+  ContactMonitor monitor_;
+  double search_seconds_ = 0;
+  long contact_updates_ = 0;
+};
+} // namespace dembridge::dem
