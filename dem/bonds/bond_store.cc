@@ -23,6 +23,24 @@ void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3&
   moment.push_back(Vec3::Zero());
 }
 
+void BondStore::reorder(const std::vector<std::size_t>& order)
+{
+  auto permute = [&](auto& v)
+  {
+    if (v.empty()) // failure arrays without a failure law
+      return;
+    auto copy = v;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      v[k] = copy[order[k]];
+  };
+  permute(a), permute(b), permute(rest_length), permute(rest_axis);
+  permute(kn), permute(ks), permute(ktor), permute(kben);
+  permute(contact_fraction), permute(radius), permute(damping_force), permute(damping_moment);
+  permute(model), permute(state), permute(force), permute(moment);
+  permute(tensile_strength), permute(shear_strength), permute(damage), permute(kappa_max);
+  permute(kappa_ultimate), permute(dissipated), permute(failure_mode);
+}
+
 BondStiffness BondStore::stiffness(std::size_t k) const
 {
   BondStiffness s;

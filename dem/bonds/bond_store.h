@@ -1,7 +1,10 @@
 #pragma once
 // Bond storage: structure of arrays. A bond joins particles a < b; its constants are fixed at
-// formation; its state can flip from intact to broken (bonds are never erased inside the force
-// loop, so indices stay valid for output and the later damage model).
+// formation; its state goes from intact to softening (damaged, still carrying (1 - D) of its
+// trial forces) to broken, never back (bonds are never erased inside the force loop, so indices
+// stay valid for output and the crack log). Strengths and damage (bond_damage.h) are per bond;
+// their arrays are empty when the failure law is `none`.
+#include "dem/bonds/bond_damage.h"
 #include "dem/bonds/bond_model.h"
 #include <vector>
 
@@ -10,8 +13,16 @@ namespace dembridge::dem
 enum class BondState : std::uint8_t
 {
   intact,
-  broken,
+  softening, ///< damaged (0 < D < 1): bonded, carries (1 - D) of its trial forces
+  broken,    ///< carries nothing, never again (a broken pair is not re-bonded)
 };
+
+/// A bond that still joins its particles (intact or softening): it carries forces, and its pair
+/// is no contact pair.
+inline bool is_bonded(BondState s)
+{
+  return s != BondState::broken;
+}
 
 struct BondStore
 {
@@ -27,7 +38,28 @@ struct BondStore
   // on recording steps only (output, energy), not on every step.
   std::vector<Vec3> force, moment;
 
+  // Failure (bond_damage.h, bond_strength.h): one law for the store, strengths and damage per
+  // bond (filled by assign_bond_strengths; empty while failure.mode is none).
+  FailureLaw failure;
+  std::vector<double> tensile_strength; ///< sigma_t, Pa
+  std::vector<double> shear_strength;   ///< tau_c (constant) or cohesion c (Mohr-Coulomb), Pa
+  std::vector<double> damage;           ///< D in [0, 1] (1 once broken)
+  std::vector<double> kappa_max;        ///< largest failure index reached (softening)
+  std::vector<double> kappa_ultimate;   ///< kappa_u, fixed when softening starts (eq. 4)
+  std::vector<double> dissipated;       ///< fracture energy booked for the bond so far, J
+  std::vector<CrackMode> failure_mode;  ///< mode that governed when softening started
+
   std::size_t size() const { return a.size(); }
+  bool has_failure() const { return failure.mode != FailureMode::none; }
+  /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
+  double load_factor(std::size_t k) const
+  {
+    if (state[k] == BondState::broken)
+      return 0.0;
+    return damage.empty() ? 1.0 : 1.0 - damage[k];
+  }
+  /// Puts the bonds in the order `order` (new k = old order[k]), every per-bond array alike.
+  void reorder(const std::vector<std::size_t>& order);
   /// The constants of bond k as formed (inverse of add's BondStiffness argument).
   BondStiffness stiffness(std::size_t k) const;
   void add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis, BondModel m,

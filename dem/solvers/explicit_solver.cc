@@ -1,5 +1,6 @@
 #include "dem/solvers/explicit_solver.h"
 #include "dem/bonds/bond_kernel.h"
+#include "dem/bonds/bond_stress.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -38,7 +39,24 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
     for (int i : groups_[g].members)
       p_.group_mask[i] |= 1u << g;
+  if (b_.has_failure() &&
+      (b_.tensile_strength.size() != b_.size() || b_.failure_mode.size() != b_.size()))
+    throw std::logic_error("ExplicitSolver: a failure law without per-bond strengths "
+                           "(assign_bond_strengths)");
   partition_bonds();
+  // Failure buffers: bond failures are rare; a reserve per range keeps the loop free of
+  // allocation but for the odd burst (amortised).
+  for (int phase = 0; phase < 4; ++phase)
+  {
+    phase_buffer_[phase] = crack_buffers_.size();
+    crack_buffers_.resize(crack_buffers_.size() + phases_[phase].size());
+  }
+  if (b_.has_failure())
+  {
+    for (auto& buffer : crack_buffers_)
+      buffer.reserve(64);
+    cracks_.reserve(256);
+  }
   for (std::size_t k = 0; k < b_.size(); ++k)
     dashpots_ = dashpots_ || b_.damping_force[k] > 0 || b_.damping_moment[k] > 0;
   if (dashpots_)
@@ -96,17 +114,12 @@ void ExplicitSolver::partition_bonds()
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t x, std::size_t y) { return bucket[x] < bucket[y]; });
-  auto permute = [&](auto& v)
+  b_.reorder(order); // every per-bond array, strengths and damage included
   {
-    auto copy = v;
+    const auto copy = bucket;
     for (std::size_t k = 0; k < nb; ++k)
-      v[k] = copy[order[k]];
-  };
-  permute(b_.a), permute(b_.b), permute(b_.rest_length), permute(b_.rest_axis);
-  permute(b_.kn), permute(b_.ks), permute(b_.ktor), permute(b_.kben);
-  permute(b_.contact_fraction), permute(b_.radius), permute(b_.damping_force);
-  permute(b_.damping_moment), permute(b_.model), permute(b_.state), permute(b_.force);
-  permute(b_.moment), permute(bucket);
+      bucket[k] = copy[order[k]];
+  }
   auto range_of = [&](int bk)
   {
     auto first = std::lower_bound(bucket.begin(), bucket.end(), bk) - bucket.begin();
@@ -120,8 +133,9 @@ void ExplicitSolver::partition_bonds()
   phases_[3].push_back(range_of(2 * T));
 }
 
-template <bool record, bool dashpots>
-void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain)
+template <bool record, bool dashpots, FailureMode failure>
+void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain,
+                                double& fracture, std::vector<CrackEvent>& events)
 {
   const Vec3* x = p_.position.data();
   const Quat* q = p_.orientation.data();
@@ -131,10 +145,17 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   Vec3* M = p_.torque.data();
   Vec3* Fd = dashpot_force_.data();
   Vec3* Md = dashpot_torque_.data();
+  [[maybe_unused]] const FailureLaw& law = b_.failure;
+  [[maybe_unused]] const double dt = settings_.time_step;
   BondForces f;
   for (std::size_t k = begin; k < end; ++k)
   {
-    if (b_.state[k] != BondState::intact)
+    if constexpr (failure == FailureMode::none)
+    {
+      if (b_.state[k] != BondState::intact)
+        continue;
+    }
+    else if (b_.state[k] == BondState::broken)
       continue;
     const int ia = b_.a[k], ib = b_.b[k];
     bond_law<dashpots>(x[ia].data(), x[ib].data(), q[ia].coeffs().data(), q[ib].coeffs().data(),
@@ -143,34 +164,168 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
                         b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
                         b_.damping_moment[k]},
                        f);
+    [[maybe_unused]] double carried = 1.0; // 1 - D
+    if constexpr (failure != FailureMode::none)
+    {
+      // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2).
+      const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
+      const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
+      const BondStress st = bond_stress(Fe, Me, f.e, b_.radius[k], law.moment_factor);
+      const double kappa_t = st.tensile / b_.tensile_strength[k];
+      const double kappa_s =
+          st.shear / shear_strength(law, b_.shear_strength[k], st.normal_force, st.area);
+      const double kappa = std::max(kappa_t, kappa_s); // eq. (1)
+      // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
+      auto elastic_power = [&]
+      {
+        const double cx = f.e[1] * Fe[2] - f.e[2] * Fe[1], cy = f.e[2] * Fe[0] - f.e[0] * Fe[2],
+                     cz = f.e[0] * Fe[1] - f.e[1] * Fe[0];
+        double P = 0;
+        for (int d = 0; d < 3; ++d)
+        {
+          const double c = d == 0 ? cx : d == 1 ? cy : cz;
+          P += Fe[d] * (v[ib][d] - v[ia][d]) - (Me[d] + f.ra * c) * w[ia][d] +
+               (Me[d] + f.rb * c) * w[ib][d];
+        }
+        return P;
+      };
+      auto fail = [&](double energy, CrackMode mode)
+      {
+        b_.state[k] = BondState::broken;
+        b_.damage[k] = 1.0;
+        events.push_back({time_, k, ia, ib, Vec3::Zero(), Vec3::UnitX(), mode, energy});
+      };
+      if constexpr (failure == FailureMode::brittle)
+      {
+        if (kappa >= 1.0)
+        {
+          // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
+          const double released = f.strain_energy + 0.5 * dt * elastic_power();
+          fracture += released;
+          b_.dissipated[k] = released;
+          fail(released, kappa_s > kappa_t ? CrackMode::shear : CrackMode::tension);
+          continue;
+        }
+      }
+      else if (kappa > b_.kappa_max[k])
+      {
+        b_.kappa_max[k] = kappa;
+        if (kappa > 1.0)
+        {
+          if (b_.state[k] == BondState::intact)
+          {
+            // softening starts: kappa_u from the energy at the peak (eq. 4)
+            const bool shear = kappa_s > kappa_t;
+            const double peak_energy = f.strain_energy / (kappa * kappa);
+            const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
+            b_.kappa_ultimate[k] = std::max(1.0, gf * st.area / peak_energy);
+            b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
+            b_.state[k] = BondState::softening;
+          }
+          const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
+          const double released =
+              (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
+          fracture += released;
+          b_.dissipated[k] += released;
+          b_.damage[k] = D;
+          if (D >= 1.0)
+          {
+            fail(b_.dissipated[k], b_.failure_mode[k]);
+            continue;
+          }
+        }
+      }
+      carried = 1.0 - b_.damage[k];
+      if (carried < 1.0)
+        for (int d = 0; d < 3; ++d)
+        {
+          f.Fc[d] *= carried, f.Mc[d] *= carried;
+          f.Fd[d] *= carried, f.Md[d] *= carried;
+        }
+    }
     bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
     if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
       bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
     if constexpr (record)
     {
-      strain += f.strain_energy;
+      if constexpr (failure == FailureMode::none)
+        strain += f.strain_energy;
+      else
+        strain += carried * f.strain_energy; // secant: (1 - D) U_e
       b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
       b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
     }
   }
 }
 
-template <bool record, bool dashpots> void ExplicitSolver::compute_bond_forces()
+template <bool record, bool dashpots, FailureMode failure>
+void ExplicitSolver::compute_bond_forces()
 {
-  double strain = 0;
+  double strain = 0, fracture = 0;
   for (int phase = 0; phase < 3; ++phase)
   {
     const auto& ranges = phases_[phase];
     if (ranges.empty())
       continue;
-#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain)
+    auto* buffers = crack_buffers_.data() + phase_buffer_[phase];
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain, fracture)
     for (std::size_t r = 0; r < ranges.size(); ++r)
-      bond_range<record, dashpots>(ranges[r].first, ranges[r].second, strain);
+      bond_range<record, dashpots, failure>(ranges[r].first, ranges[r].second, strain, fracture,
+                                            buffers[r]);
   }
-  for (const auto& range : phases_[3])
-    bond_range<record, dashpots>(range.first, range.second, strain);
+  for (std::size_t r = 0; r < phases_[3].size(); ++r)
+    bond_range<record, dashpots, failure>(phases_[3][r].first, phases_[3][r].second, strain,
+                                          fracture, crack_buffers_[phase_buffer_[3] + r]);
   if constexpr (record)
     energy_.strain = strain;
+  if constexpr (failure != FailureMode::none)
+  {
+    energy_.fracture += fracture;
+    drain_crack_events();
+  }
+}
+
+template <bool record> void ExplicitSolver::dispatch_bond_forces()
+{
+  switch (b_.failure.mode)
+  {
+  case FailureMode::none:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::none>()
+              : compute_bond_forces<record, false, FailureMode::none>();
+    break;
+  case FailureMode::brittle:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::brittle>()
+              : compute_bond_forces<record, false, FailureMode::brittle>();
+    break;
+  case FailureMode::softening:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::softening>()
+              : compute_bond_forces<record, false, FailureMode::softening>();
+    break;
+  }
+}
+
+// Serial, after the parallel loop: the failures of this step, with where they happened
+// (positions x^n), in particle-id order so the log does not depend on the thread partition.
+void ExplicitSolver::drain_crack_events()
+{
+  const std::size_t first = cracks_.size();
+  for (auto& buffer : crack_buffers_)
+  {
+    for (auto& c : buffer)
+    {
+      const Vec3 &xa = p_.position[c.a], &xb = p_.position[c.b];
+      c.midpoint = 0.5 * (xa + xb);
+      c.axis = (xb - xa).normalized();
+      --p_.coordination[c.a];
+      --p_.coordination[c.b];
+      ++broken_by_mode_[int(c.mode)];
+      cracks_.push_back(c);
+    }
+    buffer.clear();
+  }
+  std::sort(cracks_.begin() + long(first), cracks_.end(),
+            [](const CrackEvent& x, const CrackEvent& y)
+            { return std::pair(x.a, x.b) < std::pair(y.a, y.b); });
 }
 
 void ExplicitSolver::apply_loads()
@@ -376,10 +531,7 @@ void ExplicitSolver::step(bool record)
     p_.force[i].setZero();
     p_.torque[i].setZero();
   }
-  if (dashpots_)
-    record ? compute_bond_forces<true, true>() : compute_bond_forces<false, true>();
-  else
-    record ? compute_bond_forces<true, false>() : compute_bond_forces<false, false>();
+  record ? dispatch_bond_forces<true>() : dispatch_bond_forces<false>();
   apply_loads();
   for (auto* c : contributions_)
     c->add_forces(p_, time_, settings_.time_step, record);

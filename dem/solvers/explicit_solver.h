@@ -14,12 +14,19 @@
 // No allocation and no virtual call happen inside step(). With threads > 1 the bonds are
 // grouped into spatial slabs so that threads never write the same particle (no atomics, the
 // result does not depend on the thread count beyond round-off order within a particle).
+// Bond failure (bond_damage.h): with a failure law the bond loop is a separate instantiation
+// that evaluates every bond's stresses on its trial forces each step, softens or breaks it (a
+// bond writes only its own state), books the released energy as fracture, and logs failures in
+// per-range buffers reserved up front; they are drained after the loop, in particle-id order,
+// into the crack log (cracks()), and the particles' coordination numbers follow. Without a
+// failure law the loop is the plain one.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/energy.h"
 #include "dem/core/particle_store.h"
 #include "dem/model/groups.h"
 #include "dem/model/loads.h"
 #include "dem/solvers/step_contribution.h"
+#include <array>
 #include <vector>
 
 namespace dembridge::dem
@@ -54,6 +61,11 @@ public:
   /// forces do not.
   double unbalanced_force_ratio() const { return unbalanced_ratio_; }
   const std::vector<Group>& groups() const { return groups_; }
+  /// Every bond failure so far, in time order (within a step by particle ids).
+  const std::vector<CrackEvent>& cracks() const { return cracks_; }
+  long n_broken_bonds() const { return long(cracks_.size()); }
+  /// Broken bonds whose failure was governed by tension / by shear.
+  long broken_bonds(CrackMode mode) const { return broken_by_mode_[int(mode)]; }
   const std::vector<Load>& loads() const { return loads_; }
 
   /// Sum over the group of the particle forces of the last step: on constrained DOFs this is
@@ -73,9 +85,12 @@ public:
   }
 
 private:
-  template <bool record, bool dashpots> void compute_bond_forces();
-  template <bool record, bool dashpots>
-  void bond_range(std::size_t begin, std::size_t end, double& strain);
+  template <bool record> void dispatch_bond_forces();
+  template <bool record, bool dashpots, FailureMode failure> void compute_bond_forces();
+  template <bool record, bool dashpots, FailureMode failure>
+  void bond_range(std::size_t begin, std::size_t end, double& strain, double& fracture,
+                  std::vector<CrackEvent>& events);
+  void drain_crack_events();
   void apply_loads();
   template <bool record> void integrate();
   void partition_bonds();
@@ -103,6 +118,11 @@ private:
   /// Bond ranges: phase 0 ranges run in parallel (one per slab), then phase 1 (cut bonds
   /// between slabs s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> phases_;
+  /// One failure buffer per bond range (phase_buffer_[phase] + range), reserved up front.
+  std::vector<std::vector<CrackEvent>> crack_buffers_;
+  std::array<std::size_t, 4> phase_buffer_{};
+  std::vector<CrackEvent> cracks_;
+  std::array<long, 2> broken_by_mode_{};
   std::vector<StepContribution*> contributions_;
 };
 } // namespace dembridge::dem

@@ -1,0 +1,158 @@
+#include "dem/bonds/bond_strength.h"
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+namespace dembridge::dem
+{
+namespace
+{
+std::string number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void require_positive(double value, const std::string& key, const char* unit)
+{
+  if (!(value > 0) || !std::isfinite(value))
+    throw InputError("Damage/" + key + ": must be positive (got " + number(value) + " " + unit +
+                     ")");
+}
+
+/// Strengths drawn one after the other from one seeded stream.
+class StrengthSampler
+{
+public:
+  explicit StrengthSampler(const DamageConfig& c) : c_(c), rng_(c.seed)
+  {
+    if (c.scatter == StrengthScatter::weibull)
+      weibull_scale_ = 1.0 / std::tgamma(1.0 + 1.0 / c.weibull_modulus);
+  }
+
+  double draw(double mean)
+  {
+    switch (c_.scatter)
+    {
+    case StrengthScatter::none:
+      return mean;
+    case StrengthScatter::normal:
+      for (;;) // truncated to positive strengths: redraw
+      {
+        const double s = mean * (1.0 + c_.scatter_deviation * standard_normal());
+        if (s > 0)
+          return s;
+      }
+    case StrengthScatter::weibull:
+      return mean * weibull_scale_ * std::pow(-std::log1p(-uniform()), 1.0 / c_.weibull_modulus);
+    }
+    return mean;
+  }
+
+private:
+  /// U[0, 1) from the top 53 bits (std::uniform_real_distribution is not specified bit for bit).
+  double uniform() { return double(rng_() >> 11) * 0x1.0p-53; }
+  /// Box-Muller, both variates used in turn.
+  double standard_normal()
+  {
+    if (has_spare_)
+    {
+      has_spare_ = false;
+      return spare_;
+    }
+    const double u1 = 1.0 - uniform(), u2 = uniform(); // u1 in (0, 1]
+    const double r = std::sqrt(-2.0 * std::log(u1)), t = 2.0 * std::numbers::pi * u2;
+    spare_ = r * std::sin(t), has_spare_ = true;
+    return r * std::cos(t);
+  }
+
+  const DamageConfig& c_;
+  std::mt19937_64 rng_;
+  double weibull_scale_ = 1;
+  double spare_ = 0;
+  bool has_spare_ = false;
+};
+} // namespace
+
+void DamageConfig::validate() const
+{
+  if (law.mode == FailureMode::none)
+    return;
+  require_positive(tensile_strength, "tensile strength", "Pa");
+  if (law.shear == ShearCriterion::constant)
+    require_positive(shear_strength, "shear strength", "Pa");
+  else
+  {
+    require_positive(cohesion, "cohesion", "Pa");
+    if (!(friction_angle >= 0 && friction_angle < 90))
+      throw InputError("Damage/friction angle: must lie in [0, 90) degrees (got " +
+                       number(friction_angle) + ")");
+  }
+  if (!(law.moment_factor >= 0 && law.moment_factor <= 1))
+    throw InputError("Damage/moment factor: must lie in [0, 1] (got " + number(law.moment_factor) +
+                     ")");
+  if (scatter == StrengthScatter::normal && !(scatter_deviation > 0 && scatter_deviation < 10))
+    throw InputError("Damage/scatter: the relative standard deviation of a normal scatter must "
+                     "lie in (0, 10) (got " +
+                     number(scatter_deviation) + ")");
+  if (scatter == StrengthScatter::weibull && !(weibull_modulus > 0 && weibull_modulus < 1e3))
+    throw InputError("Damage/weibull modulus: must lie in (0, 1000) (got " +
+                     number(weibull_modulus) + ")");
+  if (law.mode == FailureMode::softening)
+  {
+    for (auto [g, key] : {std::pair{law.fracture_energy_I, "fracture energy mode I"},
+                          std::pair{law.fracture_energy_II, "fracture energy mode II"}})
+      if (!(g > 0) || !std::isfinite(g))
+        throw InputError(std::string("Damage/") + key +
+                         ": softening needs a positive fracture energy (got " + number(g) +
+                         " J/m^2)");
+  }
+}
+
+void assign_bond_strengths(BondStore& b, const DamageConfig& c)
+{
+  c.validate();
+  const std::size_t n = b.size();
+  b.failure = c.law;
+  if (c.law.shear == ShearCriterion::mohr_coulomb)
+    b.failure.tan_friction = std::tan(c.friction_angle * std::numbers::pi / 180.0);
+  const bool on = c.law.mode != FailureMode::none;
+  b.tensile_strength.assign(on ? n : 0, 0.0);
+  b.shear_strength.assign(on ? n : 0, 0.0);
+  b.damage.assign(on ? n : 0, 0.0);
+  b.kappa_max.assign(on ? n : 0, 0.0);
+  b.kappa_ultimate.assign(on ? n : 0, 0.0);
+  b.dissipated.assign(on ? n : 0, 0.0);
+  b.failure_mode.assign(on ? n : 0, CrackMode::tension);
+  if (!on)
+    return;
+  const double shear_mean = c.law.shear == ShearCriterion::constant ? c.shear_strength : c.cohesion;
+  StrengthSampler sample(c);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    b.tensile_strength[k] = sample.draw(c.tensile_strength);
+    b.shear_strength[k] = sample.draw(shear_mean);
+  }
+  if (c.law.mode != FailureMode::softening)
+    return;
+  // Snap-back (bond_damage.h eq. 4): G_f A >= U_peak of pure tension and of pure shear.
+  double need_I = 0, need_II = 0; // largest U_peak / A over the bonds, J/m^2
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double area = std::numbers::pi * b.radius[k] * b.radius[k];
+    need_I = std::max(need_I, b.tensile_strength[k] * b.tensile_strength[k] * area / (2 * b.kn[k]));
+    need_II = std::max(need_II, b.shear_strength[k] * b.shear_strength[k] * area / (2 * b.ks[k]));
+  }
+  for (auto [g, need, key, what] : {std::tuple{c.law.fracture_energy_I, need_I,
+                                               "fracture energy mode I", "sigma_t^2 A / (2 k_n)"},
+                                    std::tuple{c.law.fracture_energy_II, need_II,
+                                               "fracture energy mode II", "tau^2 A / (2 k_s)"}})
+    if (g < need)
+      throw InputError(std::string("Damage/") + key + ": " + number(g) +
+                       " J/m^2 is below the elastic energy per bond area at the peak, " + what +
+                       " = " + number(need) +
+                       " J/m^2 for the strongest bond (snap-back); use at least that");
+}
+} // namespace dembridge::dem
