@@ -86,8 +86,9 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
   list_.build(x, r);
   const std::size_t np = list_.size();
   const auto& prev = list_.previous_index();
-  std::swap(xi_, xi_old_), std::swap(theta_, theta_old_), std::swap(touching_, touching_old_);
-  xi_.resize(np), theta_.resize(np), touching_.resize(np), pair_bond_.resize(np);
+  std::swap(xi_, xi_old_), std::swap(theta_, theta_old_);
+  std::swap(kt_, kt_old_), std::swap(kr_, kr_old_);
+  xi_.resize(np), theta_.resize(np), kt_.resize(np), kr_.resize(np), pair_bond_.resize(np);
   const auto& first = list_.first();
   const auto& second = list_.second();
   for (std::size_t k = 0; k < np; ++k)
@@ -95,7 +96,8 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
     const std::int32_t o = prev[k];
     xi_[k] = o >= 0 ? xi_old_[std::size_t(o)] : Vec3::Zero();
     theta_[k] = o >= 0 ? theta_old_[std::size_t(o)] : Vec3::Zero();
-    touching_[k] = o >= 0 ? touching_old_[std::size_t(o)] : 0;
+    kt_[k] = o >= 0 ? kt_old_[std::size_t(o)] : 0.0;
+    kr_[k] = o >= 0 ? kr_old_[std::size_t(o)] : 0.0;
     std::int32_t bond = -1;
     const auto i = std::size_t(first[k]);
     for (std::int32_t q = bond_start_[i]; q < bond_start_[i + 1]; ++q)
@@ -108,9 +110,9 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
   // previous candidates to carry their springs over.
   std::swap(wall_of_, wall_of_old_), std::swap(wall_particle_, wall_particle_old_);
   std::swap(wall_xi_, wall_xi_old_), std::swap(wall_theta_, wall_theta_old_);
-  std::swap(wall_touching_, wall_touching_old_);
+  std::swap(wall_kt_, wall_kt_old_), std::swap(wall_kr_, wall_kr_old_);
   wall_of_.clear(), wall_particle_.clear(), wall_xi_.clear(), wall_theta_.clear();
-  wall_touching_.clear();
+  wall_kt_.clear(), wall_kr_.clear();
   std::size_t o = 0;
   for (std::size_t w = 0; w < walls_.size(); ++w)
   {
@@ -130,7 +132,8 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
       wall_particle_.push_back(std::int32_t(i));
       wall_xi_.push_back(kept ? wall_xi_old_[o] : Vec3::Zero());
       wall_theta_.push_back(kept ? wall_theta_old_[o] : Vec3::Zero());
-      wall_touching_.push_back(kept ? wall_touching_old_[o] : 0);
+      wall_kt_.push_back(kept ? wall_kt_old_[o] : 0.0);
+      wall_kr_.push_back(kept ? wall_kr_old_[o] : 0.0);
     }
   }
 }
@@ -232,8 +235,8 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     const double dist2 = d.squaredNorm(), reach = r[i] + r[j];
     if (dist2 >= reach * reach || dist2 == 0.0)
     {
-      if (touching_[k])
-        xi_[k].setZero(), theta_[k].setZero(), touching_[k] = 0;
+      if (kt_[k] > 0) // the contact has just opened: its springs go
+        xi_[k].setZero(), theta_[k].setZero(), kt_[k] = kr_[k] = 0;
       continue;
     }
     const double dist = std::sqrt(dist2), delta = reach - dist;
@@ -249,9 +252,8 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
                           0.5 * (w[i] + w[j]).dot(n),
                           r[i] * r[j] / reach,
                           m[i] * m[j] / (m[i] + m[j])};
-    const ContactOutput out =
-        contact_force<Law, rolling>(*pair_law, in, mu, rolling_, dt, xi_[k], theta_[k]);
-    touching_[k] = 1;
+    const ContactOutput out = contact_force<Law, rolling>(*pair_law, in, mu, rolling_, dt,
+                                                          {xi_[k], theta_[k], kt_[k], kr_[k]});
     ++active;
     F[j] += out.force;
     F[i] -= out.force;
@@ -281,17 +283,16 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     const double gap = (x[i] - point_now_[iw]).dot(n) - r[i];
     if (gap >= 0.0)
     {
-      if (wall_touching_[e])
-        wall_xi_[e].setZero(), wall_theta_[e].setZero(), wall_touching_[e] = 0;
+      if (wall_kt_[e] > 0)
+        wall_xi_[e].setZero(), wall_theta_[e].setZero(), wall_kt_[e] = wall_kr_[e] = 0;
       continue;
     }
     const double delta = -gap;
     const Vec3 v_wall = (point_now_[iw] - walls_[iw].point(time - dt)) / dt; // v^{n-1/2}
     const ContactInput in{n,   delta, 0.0, r[i] - 0.5 * delta, v_wall, Vec3::Zero(), v[i], w[i],
                           0.0, r[i],  m[i]};
-    const ContactOutput out =
-        contact_force<Law, rolling>(*wall_law, in, mu, rolling_, dt, wall_xi_[e], wall_theta_[e]);
-    wall_touching_[e] = 1;
+    const ContactOutput out = contact_force<Law, rolling>(
+        *wall_law, in, mu, rolling_, dt, {wall_xi_[e], wall_theta_[e], wall_kt_[e], wall_kr_[e]});
     ++active;
     F[i] += out.force;
     T[i] += out.torque_j;

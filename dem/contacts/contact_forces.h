@@ -81,12 +81,12 @@ private:
   NeighbourList list_;
   std::vector<std::int32_t> pair_bond_;
   std::vector<Vec3> xi_, theta_, xi_old_, theta_old_;
-  std::vector<std::uint8_t> touching_, touching_old_;
+  std::vector<double> kt_, kr_, kt_old_, kr_old_; ///< spring stiffnesses at the last step; 0: apart
 
   // sphere-wall candidates, sorted by (wall, particle), with their history
   std::vector<std::int32_t> wall_of_, wall_particle_, wall_of_old_, wall_particle_old_;
   std::vector<Vec3> wall_xi_, wall_theta_, wall_xi_old_, wall_theta_old_;
-  std::vector<std::uint8_t> wall_touching_, wall_touching_old_;
+  std::vector<double> wall_kt_, wall_kr_, wall_kt_old_, wall_kr_old_;
   std::vector<double> wall_offset_built_; ///< point . normal at the last build
 
   // per step

@@ -6,7 +6,8 @@
 //   v_rel  = (v_j + w_j x (-a_j n)) - (v_i + w_i x (a_i n))   velocity of j relative to i at x_c
 //          (thesis eq. 14 with the roles of A and B swapped);  v_n = v_rel . n,  v_t the rest
 //   F_n    = F_el(delta) - c_n v_n             (law; d(delta)/dt = -v_n)
-//   xi    += v_t dt  (carried into the current plane first),  F_t = -k_t xi - c_t v_t,
+//   xi    += v_t dt  (carried into the current plane and to the current k_t first,
+//            tangential_spring.h),  F_t = -k_t xi - c_t v_t,
 //            |k_t xi| <= mu max(F_n, 0): beyond it the spring slips and the dashpot is idle
 //   M_r    on i: -k_r theta_r,  theta_r += (w_i - w_j)_t dt,  |k_r theta_r| <= mu_r R* F_n
 //   force on j: F = F_n n + F_t; on i: -F.  Torques: on j (-a_j n) x F - M_r, on i (a_i n) x (-F)
@@ -42,9 +43,19 @@ struct ContactOutput
   double damping;      ///< dissipation rate of the dashpots, -F_d . v_rel >= 0, W
 };
 
+/// The history of one contact (kept beside the neighbour list): the tangential spring xi (m),
+/// the rolling spring theta (rad) and the stiffnesses they had at the last step (0: new).
+struct ContactHistory
+{
+  Vec3& xi;
+  Vec3& theta;
+  double& kt;
+  double& kr;
+};
+
 template <class Law, bool rolling>
 inline ContactOutput contact_force(const Law& law, const ContactInput& c, double mu,
-                                   const RollingResistance& roll, double dt, Vec3& xi, Vec3& theta)
+                                   const RollingResistance& roll, double dt, ContactHistory h)
 {
   const Vec3& n = c.n;
   const Vec3 v_rel = (c.vj - c.arm_j * c.wj.cross(n)) - (c.vi + c.arm_i * c.wi.cross(n));
@@ -55,10 +66,14 @@ inline ContactOutput contact_force(const Law& law, const ContactInput& c, double
   out.normal_force = r.force - r.cn * v_n; // eq. (12) with the dashpot
 
   // Tangential spring with Coulomb's cap (eq. 13)
+  Vec3& xi = h.xi;
   xi = carry_into_plane(xi, n, c.spin * dt);
+  out.slip = follow_stiffness(xi, h.kt, r.kt);
+  h.kt = r.kt;
   const double cap = mu * (out.normal_force > 0 ? out.normal_force : 0.0);
-  out.slip = plastic_spring_step(xi, v_t * dt, r.kt, cap);
-  const Vec3 damping_t = out.slip > 0 ? Vec3(Vec3::Zero()) : Vec3(-r.ct * v_t);
+  const double sliding = plastic_spring_step(xi, v_t * dt, r.kt, cap);
+  out.slip += sliding;
+  const Vec3 damping_t = sliding > 0 ? Vec3(Vec3::Zero()) : Vec3(-r.ct * v_t);
   out.damping_force = damping_t - r.cn * v_n * n;
   out.force = out.normal_force * n - r.kt * xi + damping_t;
   out.damping = -out.damping_force.dot(v_rel);
@@ -71,8 +86,11 @@ inline ContactOutput contact_force(const Law& law, const ContactInput& c, double
   {
     Vec3 w_rel = c.wi - c.wj;
     w_rel -= w_rel.dot(n) * n;
+    Vec3& theta = h.theta;
     theta = carry_into_plane(theta, n, c.spin * dt);
     const double kr = roll.spring(r.stiffness, c.r_eff);
+    out.slip += follow_stiffness(theta, h.kr, kr);
+    h.kr = kr;
     out.slip += plastic_spring_step(theta, w_rel * dt, kr, roll.limit(out.normal_force, c.r_eff));
     const Vec3 moment = -kr * theta; // on i
     out.torque_i += moment;

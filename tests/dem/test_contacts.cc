@@ -51,9 +51,12 @@ struct Scene
     groups.push_back({"r" + std::to_string(groups.size()), {i}});
     constraints.push_back({int(groups.size()) - 1, std::uint8_t(dof_rx | dof_ry | dof_rz)});
   }
+  /// dt < 0: |dt| times the contacts' critical step.
   void start(const ContactMaterial& m, const std::vector<WallConfig>& walls, double dt)
   {
     contacts = std::make_unique<ContactForces>(m, walls);
+    if (dt < 0)
+      dt = -dt * contacts->critical_time_step(p);
     solver = std::make_unique<ExplicitSolver>(p, b, groups, constraints, loads,
                                               SolverSettings{dt, 0.0, 1});
     solver->add_contribution(contacts.get());
@@ -158,7 +161,7 @@ TEST(ContactBenchmarks, LinearLawReturnsItsRestitution)
     const double R = 0.01, v = 1.0;
     s.add(Vec3(-R - 1e-7, 0, 0), R, 2500, Vec3(v, 0, 0));
     s.add(Vec3(R + 1e-7, 0, 0), R, 2500, Vec3(-v, 0, 0));
-    s.start(linear(1e6, e), {}, 1e-6); // contact time pi sqrt(m*/k) = 0.2 ms: 200 steps
+    s.start(linear(1e6, e), {}, 2e-7); // contact time pi sqrt(m*/k) = 0.2 ms: 1000 steps
     const double error = run_contact(s, 100000);
     ASSERT_TRUE(s.contacts->monitor().finished) << "e = " << e;
     std::printf("linear law, e = %.1f: rebound %.5f, energy balance %.2e\n", e,
@@ -166,4 +169,338 @@ TEST(ContactBenchmarks, LinearLawReturnsItsRestitution)
     EXPECT_NEAR(s.contacts->monitor().restitution(), e, 0.01 * e) << "e = " << e;
     EXPECT_LT(error, 0.01) << "e = " << e;
   }
+}
+
+namespace
+{
+/// A sphere with its rotations held (a block) resting on a plane tilted by theta about y, under
+/// gravity along -z: its displacement and velocity along the downhill direction at t1 and t2.
+struct Incline
+{
+  double s1, s2, v1, v2;
+};
+Incline on_incline(const ContactMaterial& m, double theta, double t1, double t2)
+{
+  const double R = 0.01, rho = 2500;
+  const Vec3 n(-std::sin(theta), 0, std::cos(theta));
+  const Vec3 downhill = -Vec3(std::cos(theta), 0, std::sin(theta));
+  Scene s;
+  s.add(R * n, R, rho);
+  const double mass = s.p.mass[0];
+  // start at the static normal overlap, so that only the tangential spring has to settle
+  const double fn = mass * g * std::cos(theta);
+  const double e_wall = m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio);
+  const double delta = m.model == ContactModel::linear
+                           ? fn / m.normal_stiffness
+                           : std::pow(fn / (4.0 / 3.0 * e_wall * std::sqrt(R)), 2.0 / 3.0);
+  const Vec3 x0 = (R - delta) * n;
+  s.p.position[0] = s.p.reference_position[0] = x0;
+  s.push(0, Vec3(0, 0, -mass * g));
+  s.hold_rotation(0);
+  s.start(m, {floor_wall(n)}, -0.2);
+  Incline out{};
+  const double dt = s.solver->time_step();
+  while (s.solver->time() < t2 - 0.5 * dt)
+  {
+    s.solver->step(s.solver->time() + 1.5 * dt >= t2); // energies at the last step
+    if (std::abs(s.solver->time() - t1) < 0.5 * dt)
+      out.s1 = (s.p.position[0] - x0).dot(downhill), out.v1 = s.p.velocity[0].dot(downhill);
+  }
+  out.s2 = (s.p.position[0] - x0).dot(downhill), out.v2 = s.p.velocity[0].dot(downhill);
+  EXPECT_LT(s.solver->energy().relative_error(), 0.01);
+  return out;
+}
+} // namespace
+
+// Coulomb friction: a block (a sphere that cannot turn) on an incline sticks below the friction
+// angle and slides above it with a = g (sin theta - mu cos theta).
+TEST(ContactFriction, StickBelowAndSlideAboveTheFrictionAngle)
+{
+  const double mu = 0.3, deg = std::numbers::pi / 180;
+  for (const ContactMaterial& m : {linear(1e5, 0.3, mu), hertz(1e8, 0.3, 0.3, mu)})
+  {
+    const std::string law = m.model == ContactModel::linear ? "linear" : "hertz_mindlin";
+    // below: 10 deg < atan(0.3) = 16.7 deg; after the spring has settled nothing moves
+    const Incline stick = on_incline(m, 10 * deg, 0.05, 0.25);
+    EXPECT_LT(std::abs(stick.s2 - stick.s1), 1e-12) << law;
+    EXPECT_LT(std::abs(stick.s2), 1e-5) << law; // the spring's elastic displacement only
+    // above: 25 deg
+    const double theta = 25 * deg;
+    const Incline sliding = on_incline(m, theta, 0.05, 0.25);
+    const double a = (sliding.v2 - sliding.v1) / 0.2;
+    const double expected = g * (std::sin(theta) - mu * std::cos(theta));
+    std::printf("%s incline 25 deg: a = %.6g m/s^2, g (sin - mu cos) = %.6g; at 10 deg drift "
+                "%.2e m\n",
+                law.c_str(), a, expected, stick.s2 - stick.s1);
+    EXPECT_NEAR(a, expected, 0.01 * expected) << law;
+  }
+}
+
+// Rolling resistance (Ai et al. 2011, model C): a sphere rolling on a floor stops after
+// s = 7 v0^2 / (10 mu_r g).
+TEST(ContactFriction, RollingSphereStopsAtTheRollingResistanceDistance)
+{
+  const double R = 0.01, rho = 2500, v0 = 0.5, mu_r = 0.1;
+  for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
+  {
+    ContactMaterial m =
+        model == ContactModel::linear ? linear(1e5, 0.5, 0.5) : hertz(1e8, 0.3, 0.5, 0.5);
+    m.rolling_friction = mu_r;
+    Scene s;
+    s.add(Vec3(0, 0, R), R, rho, Vec3(v0, 0, 0));
+    const double mass = s.p.mass[0], fn = mass * g;
+    const double delta =
+        model == ContactModel::linear
+            ? fn / m.normal_stiffness
+            : std::pow(fn / (4.0 / 3.0 * m.youngs_modulus / (1 - 0.09) * std::sqrt(R)), 2.0 / 3.0);
+    s.p.position[0].z() = R - delta;
+    s.p.angular_velocity[0] = Vec3(0, v0 / R, 0); // rolling without slip
+    s.push(0, Vec3(0, 0, -mass * g));
+    s.start(m, {floor_wall()}, -0.2);
+    const double x0 = s.p.position[0].x();
+    while (s.p.velocity[0].x() > 0 && s.solver->time() < 2.0)
+      s.solver->step();
+    const double distance = s.p.position[0].x() - x0;
+    const double expected = 7 * v0 * v0 / (10 * mu_r * g);
+    std::printf("rolling (%s): stops after %.6g m, 7 v0^2/(10 mu_r g) = %.6g m\n",
+                model == ContactModel::linear ? "linear" : "hertz_mindlin", distance, expected);
+    EXPECT_NEAR(distance, expected, 0.01 * expected);
+  }
+}
+
+// The tangential spring is carried with the contact plane: a pair in contact turned rigidly as
+// a whole (tilting the normal and spinning about it) keeps its tangential force, which turns
+// with the pair.
+TEST(ContactSpring, RigidRotationKeepsTheTangentialForce)
+{
+  const double R = 0.01, delta = 1e-5, dt = 1e-5;
+  ParticleStore p;
+  BondStore bonds;
+  p.add(Vec3(-(R - 0.5 * delta), 0, 0), R, 2500);
+  p.add(Vec3(R - 0.5 * delta, 0, 0), R, 2500);
+  ContactMaterial m = linear(1e5, 1.0, 10.0); // friction high enough never to slip
+  ContactForces contacts(m, {});
+  contacts.attach(p, bonds);
+  auto tangential_force = [&]()
+  {
+    p.force[1].setZero(), p.force[0].setZero();
+    contacts.add_forces(p, 0.0, dt, false);
+    const Vec3 n = (p.position[1] - p.position[0]).normalized();
+    return Vec3(p.force[1] - p.force[1].dot(n) * n);
+  };
+  // shear the contact: particle 1 slides along y for ten steps
+  p.velocity[1] = Vec3(0, 0.01, 0);
+  Vec3 ft;
+  for (int k = 0; k < 10; ++k)
+    ft = tangential_force();
+  p.velocity[1].setZero();
+  const Vec3 ft0 = tangential_force();
+  ASSERT_NEAR(ft0.norm(), m.normal_stiffness * 2.0 / 7.0 * 10 * 0.01 * dt, 1e-12);
+  // now turn the pair rigidly by 90 degrees about an axis mixing tilt (z) and spin (x)
+  const Vec3 axis = Vec3(1, 0, 1).normalized();
+  const double rate = 2.0; // rad/s
+  const int steps = int(std::numbers::pi / 2 / (rate * dt));
+  const Vec3 x0[2] = {p.position[0], p.position[1]};
+  for (int k = 1; k <= steps; ++k)
+  {
+    const Eigen::AngleAxisd now(rate * k * dt, axis);
+    for (int i = 0; i < 2; ++i)
+    {
+      p.position[i] = now * x0[i];
+      p.velocity[i] = rate * axis.cross(p.position[i]); // rigid: no relative motion at x_c
+      p.angular_velocity[i] = rate * axis;
+    }
+    ft = tangential_force();
+  }
+  const Eigen::AngleAxisd turn(rate * steps * dt, axis);
+  std::printf("rigid rotation by %.4f rad: |F_t| %.9g -> %.9g N, alignment %.9f\n",
+              rate * steps * dt, ft0.norm(), ft.norm(), ft.dot(turn * ft0) / ft.squaredNorm());
+  EXPECT_NEAR(ft.norm(), ft0.norm(), 1e-6 * ft0.norm());
+  EXPECT_NEAR(ft.dot(turn * ft0) / (ft.norm() * ft0.norm()), 1.0, 1e-4);
+}
+
+// The energy balance (dem/core/energy.h) holds through oblique impacts of spinning spheres
+// with friction, rolling resistance and damping, for both laws and against a wall.
+TEST(ContactEnergy, BalanceThroughImpactsWithFrictionAndDamping)
+{
+  for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
+    for (bool wall : {false, true})
+    {
+      ContactMaterial m =
+          model == ContactModel::linear ? linear(1e6, 0.6, 0.3) : hertz(1e9, 0.25, 0.6, 0.3);
+      m.rolling_friction = 0.05;
+      m.monitor = true;
+      Scene s;
+      const double R = 0.01;
+      s.add(Vec3(0, 0, R + 1e-6), R, 2500, Vec3(1.5, 0.5, -1.0));
+      s.p.angular_velocity[0] = Vec3(10, -30, 5);
+      std::vector<WallConfig> walls;
+      if (wall)
+        walls.push_back(floor_wall());
+      else
+        s.add(Vec3(0.002, 0.001, -R), 0.8 * R, 2000, Vec3(-0.2, 0, 0.5));
+      s.start(m, walls, -0.1);
+      const double error = run_contact(s, 200000);
+      const auto& e = s.solver->energy();
+      const std::string what =
+          std::string(model == ContactModel::linear ? "linear" : "hertz_mindlin") +
+          (wall ? " on a wall" : " pair");
+      std::printf("%s: friction %.3g J, damping %.3g J, kinetic %.3g J, initial %.3g J, "
+                  "balance %.2e\n",
+                  what.c_str(), e.friction, e.contact_damping, e.kinetic, e.initial, error);
+      ASSERT_TRUE(s.contacts->monitor().finished) << what;
+      EXPECT_GT(e.friction, 0.01 * e.initial) << what;
+      EXPECT_GT(e.contact_damping, 0.01 * e.initial) << what;
+      EXPECT_LT(error, 0.01) << what;
+    }
+}
+
+// Walls as platens: a top wall moves down, squeezes a sphere against the fixed floor and stops.
+// The wall work is what the contacts store and dissipate (balance within 1 % of the run's
+// energy scale), and at rest each wall carries the contact force of half the squeeze.
+TEST(ContactEnergy, PlatenSqueezesASphere)
+{
+  for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
+  {
+    const ContactMaterial m =
+        model == ContactModel::linear ? linear(1e5, 0.5, 0.4) : hertz(1e8, 0.25, 0.5, 0.4);
+    Scene s;
+    const double R = 0.01, squeeze = 2e-4;
+    s.add(Vec3(0, 0, R), R, 2500);
+    WallConfig top = floor_wall(-Vec3::UnitZ(), Vec3(0, 0, 2 * R));
+    top.name = "top";
+    const double speed = 0.02, ramp = 0.002;
+    top.velocity = Vec3(0, 0, -speed);
+    top.ramp_time = ramp;
+    top.end_time = ramp / 2 + squeeze / speed; // travels exactly `squeeze`
+    s.start(m, {floor_wall(), top}, -0.2);
+    double worst = 0, largest = 0;
+    while (s.solver->time() < 0.2)
+    {
+      s.solver->step(true);
+      largest = std::max(largest, s.solver->energy().largest());
+      worst = std::max(worst, s.solver->energy().error());
+    }
+    worst /= largest;
+    const auto& e = s.solver->energy();
+    const double half = squeeze / 2;
+    const double expected =
+        model == ContactModel::linear
+            ? m.normal_stiffness * half
+            : 4.0 / 3.0 * m.youngs_modulus / (1 - 0.25 * 0.25) * std::sqrt(R) * std::pow(half, 1.5);
+    const std::string law = model == ContactModel::linear ? "linear" : "hertz_mindlin";
+    std::printf("platen (%s): wall travel %.6g m, force on the top wall %.6g N (expected %.6g), "
+                "wall work %.4g J = strain %.4g + damping %.4g + kinetic %.3g J, balance %.2e\n",
+                law.c_str(), -s.contacts->wall(1).displacement(1.0).z(),
+                s.contacts->force_on_wall(1).z(), expected, e.wall_work, e.contact_strain,
+                e.contact_damping, e.kinetic, worst);
+    EXPECT_NEAR(-s.contacts->wall(1).displacement(1.0).z(), squeeze, 1e-12) << law;
+    EXPECT_NEAR(s.contacts->force_on_wall(1).z(), expected, 1e-3 * expected) << law;
+    EXPECT_NEAR(s.contacts->force_on_wall(0).z(), -expected, 1e-3 * expected) << law;
+    EXPECT_GT(e.wall_work, 0) << law;
+    EXPECT_LT(worst, 0.01) << law;
+  }
+}
+
+// Contacts never act between particles joined by an intact bond; once the bond is broken they
+// do.
+TEST(ContactBonds, NoContactAcrossAnIntactBond)
+{
+  Scene s;
+  const double R = 0.01;
+  s.add(Vec3(-R, 0, 0), R, 2500, Vec3(0.1, 0, 0));
+  s.add(Vec3(R, 0, 0), R, 2500, Vec3(-0.1, 0, 0));
+  BondMaterial bm;
+  bm.youngs_modulus = 1e6;
+  add_bond(s.p, s.b, bm, 0, 1);
+  s.start(linear(1e5), {}, -0.1);
+  for (int k = 0; k < 20; ++k) // within the bond's first half oscillation
+  {
+    s.solver->step();
+    ASSERT_LT((s.p.position[1] - s.p.position[0]).norm(), 2 * R); // overlapping ...
+    ASSERT_EQ(s.contacts->active_contacts(), 0u);                 // ... but bonded
+  }
+  s.b.state[0] = BondState::broken;
+  s.solver->step();
+  EXPECT_EQ(s.contacts->active_contacts(), 1u);
+  // the contact alone acts now: F = k_n delta on each sphere
+  const double delta = 2 * R - (s.p.position[1] - s.p.position[0]).norm();
+  EXPECT_GT(delta, 0);
+}
+
+// The Verlet list holds exactly the pairs an all-pairs search finds within the skin, after
+// random motions, and is rebuilt only once a particle has moved more than half the skin.
+TEST(ContactNeighbours, VerletListMatchesAllPairsSearch)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  for (int i = 0; i < 1500; ++i)
+  {
+    x.push_back(Vec3(u(rng), u(rng), 0.5 * u(rng)) * 0.2);
+    r.push_back(0.004 + 0.004 * u(rng)); // polydisperse
+  }
+  const double skin = 0.002;
+  NeighbourList list(skin);
+  std::normal_distribution<double> step(0, 1e-4);
+  auto all_pairs = [&]()
+  {
+    std::set<std::pair<int, int>> s;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (std::size_t j = i + 1; j < x.size(); ++j)
+        if ((x[i] - x[j]).norm() < r[i] + r[j] + skin)
+          s.insert({int(i), int(j)});
+    return s;
+  };
+  std::vector<std::pair<int, int>> before;
+  long builds_checked = 0, steps = 0;
+  for (int move = 0; move < 400; ++move)
+  {
+    const bool rebuild = list.needs_rebuild(x);
+    EXPECT_EQ(rebuild, list.builds() == 0 || list.max_displacement(x) > 0.5 * skin);
+    if (rebuild)
+    {
+      list.build(x, r);
+      const auto expected = all_pairs();
+      std::vector<std::pair<int, int>> got;
+      for (std::size_t k = 0; k < list.size(); ++k)
+        got.push_back({list.first()[k], list.second()[k]});
+      EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+      EXPECT_TRUE((std::set<std::pair<int, int>>(got.begin(), got.end()) == expected));
+      EXPECT_EQ(got.size(), expected.size());
+      // the history map points at the same pair in the list before
+      for (std::size_t k = 0; k < got.size(); ++k)
+      {
+        const int o = list.previous_index()[k];
+        const auto it = std::lower_bound(before.begin(), before.end(), got[k]);
+        const bool existed = it != before.end() && *it == got[k];
+        ASSERT_EQ(o >= 0, existed);
+        if (existed)
+        {
+          ASSERT_EQ(before[std::size_t(o)], got[k]);
+        }
+      }
+      before = got;
+      ++builds_checked;
+    }
+    else
+    {
+      // every pair that touches now is in the list
+      for (std::size_t i = 0; i < x.size(); ++i)
+        for (std::size_t j = i + 1; j < x.size(); ++j)
+          if ((x[i] - x[j]).norm() < r[i] + r[j])
+          {
+            ASSERT_TRUE(std::binary_search(before.begin(), before.end(),
+                                           std::pair<int, int>(int(i), int(j))));
+          }
+    }
+    for (auto& p : x)
+      p += Vec3(step(rng), step(rng), step(rng));
+    ++steps;
+  }
+  std::printf("Verlet list: %ld builds in %ld moves, %zu pairs\n", builds_checked, steps,
+              list.size());
+  EXPECT_GT(builds_checked, 3);
+  EXPECT_LT(builds_checked, steps / 4);
 }
