@@ -271,7 +271,8 @@ void ElasticProblem::assemble_system(const bool condense)
   const QGauss<3> quadrature(fe.degree + 1);
   const QGauss<2> face_quadrature(fe.degree + 1);
   FEValues<3> fe_values(mapping, fe, quadrature,
-                        update_values | update_gradients | update_JxW_values);
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
   FEFaceValues<3> fe_face_values(mapping, fe, face_quadrature, update_values | update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   FullMatrix<double> cell_matrix(n, n);
@@ -294,11 +295,13 @@ void ElasticProblem::assemble_system(const bool condense)
           e[c] = 1;
           eps[i] = symmetrize(outer_product(e, fe_values.shape_grad(i, q)));
         }
+        const double w =
+            stiffness_weight ? stiffness_weight(fe_values.quadrature_point(q)) : 1.0;
         for (unsigned int i = 0; i < n; ++i)
         {
           const SymmetricTensor<2, 3> C_eps_i = stiffness * eps[i];
           for (unsigned int j = 0; j < n; ++j)
-            cell_matrix(i, j) += (C_eps_i * eps[j]) * fe_values.JxW(q);
+            cell_matrix(i, j) += w * (C_eps_i * eps[j]) * fe_values.JxW(q);
           cell_rhs(i) += fe_values.shape_value(i, q) *
                          prm.body_force[fe.system_to_component_index(i).first] * fe_values.JxW(q);
         }

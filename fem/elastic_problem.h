@@ -24,6 +24,7 @@
 #include <deal.II/lac/generic_linear_algebra.h>
 
 #include <filesystem>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -55,6 +56,9 @@ public:
   void assemble_system(bool condense);
   /// Solve the condensed system with CG + BoomerAMG; returns the number of iterations.
   unsigned int solve();
+  /// The rigid-body modes the Dirichlet DoFs leave free ("translation x, rotation about z"),
+  /// empty when the supports hold the body (rigid_body_modes.cc; collective).
+  std::string free_rigid_body_modes() const;
 
   /// Displacement at a probe along @p direction (collective).
   double probe_value(const PointProbe& probe, const dealii::Tensor<1, 3>& direction) const;
@@ -116,6 +120,9 @@ protected:
   dealii::MappingQ1<3> mapping;
   dealii::DoFHandler<3> dof_handler;
   dealii::SymmetricTensor<4, 3> stiffness;
+  /// Weight of the stiffness at a point, C -> w(x) C in the assembly (a coupled run's 1 - alpha
+  /// in the handshake band, coupling/); empty: 1 everywhere.
+  std::function<double(const dealii::Point<3>&)> stiffness_weight;
   double geometric_tolerance = 0;
 
   dealii::IndexSet locally_owned_dofs;

@@ -3,41 +3,88 @@
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <petscvec.h>
+
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 namespace dembridge::fem
 {
 using namespace dealii;
 
+namespace
+{
+/// The owned entries of a PETSc vector as a plain array, for fused loops without a PETSc call
+/// per entry.
+class OwnedArray
+{
+public:
+  explicit OwnedArray(const LA::MPI::Vector& v) : vec(static_cast<const Vec&>(v))
+  {
+    const PetscErrorCode ierr = VecGetArray(vec, &values);
+    AssertThrow(ierr == 0, ExcPETScError(ierr));
+  }
+  ~OwnedArray() { VecRestoreArray(vec, &values); }
+  OwnedArray(const OwnedArray&) = delete;
+  OwnedArray& operator=(const OwnedArray&) = delete;
+  double& operator[](const std::size_t i) { return values[i]; }
+
+private:
+  Vec vec;
+  PetscScalar* values = nullptr;
+};
+} // namespace
+
 ExplicitDynamics::ExplicitDynamics(const Parameters& parameters, MPI_Comm comm)
     : ElasticProblem(parameters, comm)
 {
 }
 
+void ExplicitDynamics::set_weights(PointFunction stiffness_weight_function,
+                                   PointFunction mass_weight_function)
+{
+  stiffness_weight = std::move(stiffness_weight_function);
+  mass_weight = std::move(mass_weight_function);
+}
+
 void ExplicitDynamics::setup()
 {
-  make_grid();
+  if (grid_builder)
+  {
+    TimerOutput::Scope t(computing_timer, "make grid");
+    names = grid_builder(triangulation);
+    geometric_tolerance = 1e-6 * GridTools::minimal_cell_diameter(triangulation);
+  }
+  else
+    make_grid();
   setup_system();
   assemble_system(/*condense=*/false);
-  for (auto* v : {&mass, &inverse_mass, &u_owned, &velocity_half, &internal_force, &applied_force,
-                  &acceleration})
+  for (auto* v :
+       {&mass, &inverse_mass, &row_sums, &u_owned, &velocity_half, &velocity_trial, &internal_force,
+        &applied_force, &step_force, &outside_force, &u_previous, &velocity_previous})
     v->reinit(locally_owned_dofs, mpi_communicator);
+  for (const auto& line : constraints.get_lines())
+    has_hanging_nodes = has_hanging_nodes || !line.entries.empty();
+  has_hanging_nodes = Utilities::MPI::logical_or(has_hanging_nodes, mpi_communicator);
   assemble_lumped_mass();
   compute_stable_time_step();
   apply_initial_displacement();
 }
 
-// M_ii = sum_q rho phi_i(x_q)^2 w_q with Gauss-Lobatto points at the nodes of FE_Q (exact
-// diagonal for degree 1 and 2, whose nodes are the Gauss-Lobatto points).
+// M_ii = sum_q w_M(x_q) rho phi_i(x_q)^2 w_q with Gauss-Lobatto points at the nodes of FE_Q
+// (exact diagonal for degree 1 and 2, whose nodes are the Gauss-Lobatto points).
 void ExplicitDynamics::assemble_lumped_mass()
 {
   TimerOutput::Scope t(computing_timer, "assemble mass");
   const QGaussLobatto<3> quadrature(fe.degree + 1);
-  FEValues<3> fe_values(mapping, fe, quadrature, update_values | update_JxW_values);
+  FEValues<3> fe_values(mapping, fe, quadrature,
+                        update_values | update_quadrature_points | update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   std::vector<types::global_dof_index> dofs(n);
   Vector<double> cell_mass(n);
@@ -46,39 +93,48 @@ void ExplicitDynamics::assemble_lumped_mass()
     {
       fe_values.reinit(cell);
       cell_mass = 0;
+      // The weight is read a hair inside the cell: Gauss-Lobatto points lie on the cell's faces,
+      // where a weight that jumps across a face (the band's edges) must come from this side.
+      const Point<3> centre = cell->center();
       for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        const Point<3>& x = fe_values.quadrature_point(q);
+        const double w = mass_weight ? mass_weight(x + 1e-6 * (centre - x)) : 1.0;
         for (unsigned int i = 0; i < n; ++i)
-          cell_mass(i) += prm.density * fe_values.shape_value(i, q) * fe_values.shape_value(i, q) *
-                          fe_values.JxW(q);
+          cell_mass(i) += w * prm.density * fe_values.shape_value(i, q) *
+                          fe_values.shape_value(i, q) * fe_values.JxW(q);
+      }
       cell->get_dof_indices(dofs);
       mass.add(dofs, cell_mass);
     }
   mass.compress(VectorOperation::add);
+  // Fixed DoFs (and hanging nodes, which follow their masters) do not answer forces.
   for (const auto i : locally_owned_dofs)
   {
     if (!(mass(i) > 0))
       throw std::runtime_error("FEM/Material/density: non-positive lumped mass");
-    inverse_mass(i) = 1.0 / mass(i);
+    inverse_mass(i) = constraints.is_constrained(i) ? 0.0 : 1.0 / mass(i);
   }
   inverse_mass.compress(VectorOperation::insert);
 }
 
 // Gershgorin: every eigenvalue of M^-1 K lies below max_i sum_j |K_ij| / M_ii; rows of fixed
-// DoFs do not move and are left out.
+// or driven DoFs do not move and are left out.
 void ExplicitDynamics::compute_stable_time_step()
 {
   double omega2 = 0;
   for (const auto row : locally_owned_dofs)
   {
-    if (constraints.is_constrained(row))
-      continue;
     double sum = 0;
-    for (auto entry = system_matrix.begin(row); entry != system_matrix.end(row); ++entry)
-      sum += std::abs(entry->value());
-    omega2 = std::max(omega2, sum / mass(row));
+    if (inverse_mass(row) > 0)
+      for (auto entry = system_matrix.begin(row); entry != system_matrix.end(row); ++entry)
+        sum += std::abs(entry->value());
+    row_sums(row) = sum;
+    omega2 = std::max(omega2, sum * inverse_mass(row));
   }
+  row_sums.compress(VectorOperation::insert);
   omega2 = Utilities::MPI::max(omega2, mpi_communicator);
-  critical_time_step = 2.0 / std::sqrt(omega2);
+  critical_time_step = omega2 > 0 ? 2.0 / std::sqrt(omega2) : 0.0;
 }
 
 void ExplicitDynamics::apply_initial_displacement()
@@ -93,49 +149,183 @@ void ExplicitDynamics::apply_initial_displacement()
     throw std::runtime_error("FEM/Dynamics/initial displacement: cannot parse '" +
                              prm.initial_displacement + "'");
   }
-  VectorTools::interpolate(mapping, dof_handler, initial, u_owned);
+  set_initial_state(initial, Functions::ZeroFunction<3>(3));
+}
+
+void ExplicitDynamics::set_initial_state(const Function<3>& u0, const Function<3>& v0)
+{
+  VectorTools::interpolate(mapping, dof_handler, u0, u_owned);
   constraints.distribute(u_owned);
   solution = u_owned;
-  velocity_half = 0;
+  VectorTools::interpolate(mapping, dof_handler, v0, velocity_half);
+  for (const auto i : locally_owned_dofs)
+    if (!(inverse_mass(i) > 0))
+      velocity_half(i) = 0;
+  velocity_half.compress(VectorOperation::insert);
+  current_time = 0;
+  step_number = 0;
+  energy = Energies();
+}
+
+void ExplicitDynamics::prescribe_boundary_displacement(const types::boundary_id id,
+                                                       const ComponentSet& mask,
+                                                       const Function<3>& g,
+                                                       std::function<double(double)> ramp)
+{
+  const std::vector<bool> components(mask.begin(), mask.end());
+  const IndexSet on_boundary =
+      DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(components), {id});
+  const unsigned int r = drive_ramps.size();
+  drive_ramps.push_back(std::move(ramp));
+  const auto first = locally_owned_dofs.nth_index_in_set(0);
+  const auto& unit_points = fe.get_unit_support_points();
+  std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+  std::set<types::global_dof_index> done;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      cell->get_dof_indices(cell_dofs);
+      for (unsigned int k = 0; k < cell_dofs.size(); ++k)
+      {
+        const auto i = cell_dofs[k];
+        if (!on_boundary.is_element(i) || !locally_owned_dofs.is_element(i) ||
+            constraints.is_constrained(i) || !done.insert(i).second)
+          continue;
+        const Point<3> x = mapping.transform_unit_to_real_cell(cell, unit_points[k]);
+        driven.push_back({static_cast<unsigned int>(i - first),
+                          g.value(x, fe.system_to_component_index(k).first), r});
+        inverse_mass(i) = 0;
+      }
+    }
+  inverse_mass.compress(VectorOperation::insert);
+  compute_stable_time_step();
+}
+
+// ------------------------------------------------------------------------------------------
+// Phase 1: f^n = f_ext + f_applied - K u_n - c M v_{n-1/2}; trial velocity.
+void ExplicitDynamics::predict(const double dt)
+{
+  TimerOutput::Scope t(computing_timer, "explicit step");
+  system_matrix.vmult(internal_force, u_owned);
+  const std::size_t n = locally_owned_dofs.n_elements();
+  OwnedArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
+      minv(inverse_mass), v(velocity_half), vt(velocity_trial), fo(outside_force);
+  const bool first_half = step_number == 0 && half_step_start;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    f[i] = fe_[i] + fa[i] - Ku[i] - mass_damping * m[i] * v[i];
+    if (first_half) // v_{-1/2} = v_0 - dt/2 a_0: the first step lands on v_0 + dt/2 a_0
+      v[i] -= 0.5 * dt * minv[i] * f[i];
+    vt[i] = v[i] + dt * minv[i] * f[i];
+    fo[i] = 0;
+  }
+  outside_force_applied = false;
+}
+
+// Phase 2: forces from outside (the coupling's multipliers).
+void ExplicitDynamics::apply_force(const LA::MPI::Vector& force, const double dt)
+{
+  const std::size_t n = locally_owned_dofs.n_elements();
+  OwnedArray f(force), minv(inverse_mass), vt(velocity_trial), fo(outside_force);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    vt[i] += dt * minv[i] * f[i];
+    fo[i] += f[i];
+  }
+  outside_force_applied = true;
+}
+
+// Phase 3: v_{n+1/2}, u_{n+1}, the energies of step n and the works up to t_n.
+void ExplicitDynamics::update(const double dt)
+{
+  TimerOutput::Scope t(computing_timer, "explicit step");
+  const std::size_t n = locally_owned_dofs.n_elements();
+  {
+    OwnedArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
+        v(velocity_half), vt(velocity_trial), fo(outside_force), u(u_owned), up(u_previous),
+        vp(velocity_previous);
+    for (const auto& d : driven) // u_{n+1} = ramp(t_{n+1}) g: the reaction is what that takes
+    {
+      const double vd = (drive_ramps[d.ramp](current_time + dt) * d.target - u[d.local]) / dt;
+      const double reaction = m[d.local] * (vd - v[d.local]) / dt - f[d.local] - fo[d.local];
+      energy.boundary_work += reaction * 0.5 * (v[d.local] + vd) * dt;
+      vt[d.local] = vd;
+    }
+    double sums[6] = {0, 0, 0, 0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double v0 = v[i], v1 = vt[i], mean = 0.5 * (v0 + v1);
+      sums[0] += 0.5 * m[i] * v0 * v1;
+      sums[1] += 0.5 * m[i] * mean * mean;
+      sums[2] += 0.5 * u[i] * Ku[i];
+      sums[3] -= fe_[i] * u[i];
+      sums[4] += mass_damping * m[i] * v0 * mean * dt;
+      sums[5] += (fa[i] + fo[i]) * mean * dt;
+      up[i] = u[i];
+      vp[i] = v0;
+      v[i] = v1;
+      u[i] += dt * v1;
+    }
+    Utilities::MPI::sum(ArrayView<const double>(sums, 6), mpi_communicator,
+                        ArrayView<double>(sums, 6));
+    energy.kinetic_shadow = sums[0];
+    energy.kinetic = sums[1];
+    energy.strain = sums[2];
+    energy.load_potential = sums[3];
+    energy.damping += sums[4];
+    energy.outside_work += sums[5];
+  }
+  if (has_hanging_nodes)
+    constraints.distribute(u_owned);
+  solution = u_owned;
+  current_time += dt;
+  ++step_number;
 }
 
 void ExplicitDynamics::step(const double dt)
 {
-  TimerOutput::Scope t(computing_timer, "explicit step");
-  // a_n = M^-1 (f_ext + f_c - K u_n), zero on fixed DoFs.
-  system_matrix.vmult(internal_force, u_owned);
-  acceleration = external_force;
-  acceleration += applied_force;
-  acceleration -= internal_force;
-  acceleration.scale(inverse_mass);
-  constraints.set_zero(acceleration);
+  predict(dt);
+  update(dt);
+}
 
-  // v_{n-1/2} and v_{n+1/2}; the first step starts from v_0 with half steps either side.
-  LA::MPI::Vector v_minus(velocity_half);
-  if (step_number == 0)
-    v_minus.add(-0.5 * dt, acceleration);
-  LA::MPI::Vector v_plus(v_minus);
-  v_plus.add(dt, acceleration);
+// ------------------------------------------------------------------------------------------
+std::pair<double, double>
+ExplicitDynamics::energy_in(const std::function<bool(const Point<3>&)>& in_region)
+{
+  std::map<types::global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+  double kinetic = 0;
+  for (const auto i : locally_owned_dofs)
+    if (in_region(support.at(i)))
+      kinetic += 0.5 * mass(i) * velocity_previous(i) * velocity_half(i);
+  // strain of u_n: cell by cell with the weighted stiffness
+  LA::MPI::Vector u_n(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  u_n = u_previous;
+  const QGauss<3> quadrature(fe.degree + 1);
+  FEValues<3> fe_values(mapping, fe, quadrature,
+                        update_gradients | update_quadrature_points | update_JxW_values);
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<SymmetricTensor<2, 3>> eps(quadrature.size());
+  double strain = 0;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned() && in_region(cell->center()))
+    {
+      fe_values.reinit(cell);
+      fe_values[displacement].get_function_symmetric_gradients(u_n, eps);
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        const double w = stiffness_weight ? stiffness_weight(fe_values.quadrature_point(q)) : 1.0;
+        strain += 0.5 * w * (eps[q] * (stiffness * eps[q])) * fe_values.JxW(q);
+      }
+    }
+  return {Utilities::MPI::sum(kinetic, mpi_communicator),
+          Utilities::MPI::sum(strain, mpi_communicator)};
+}
 
-  // Energies at step n (before the position update).
-  LA::MPI::Vector m_v(v_plus);
-  m_v.scale(mass);
-  energy.kinetic_shadow = 0.5 * (v_minus * m_v);
-  LA::MPI::Vector v_mean(v_minus);
-  v_mean += v_plus;
-  v_mean *= 0.5;
-  LA::MPI::Vector m_v_mean(v_mean);
-  m_v_mean.scale(mass);
-  energy.kinetic = 0.5 * (v_mean * m_v_mean);
-  energy.strain = 0.5 * (u_owned * internal_force);
-  energy.load_potential = -(external_force * u_owned);
-
-  // u_{n+1} = u_n + dt v_{n+1/2}
-  velocity_half = v_plus;
-  u_owned.add(dt, velocity_half);
-  constraints.distribute(u_owned);
-  solution = u_owned;
-  current_time += dt;
-  ++step_number;
+std::string ExplicitDynamics::output(const std::filesystem::path& output_dir,
+                                     const unsigned int cycle, const double time)
+{
+  output_results(output_dir, cycle, time);
+  return pvtu_records.back().second;
 }
 } // namespace dembridge::fem
