@@ -1,4 +1,5 @@
 #include "case_file.h"
+#include "contact_parameters.h"
 #include "dem_parameters.h"
 #include "verify.h"
 #ifdef DEMBRIDGE_HAVE_FEM
@@ -12,7 +13,8 @@
 namespace dembridge::app
 {
 void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std::string>& groups,
-                            const std::vector<std::string>& loads)
+                            const std::vector<std::string>& loads,
+                            const std::vector<std::string>& walls)
 {
   prm.declare_entry("Mode", "dem", dealii::Patterns::Selection("dem|fem"),
                     "dem: bonded-particle model (sections Particles ... Output); fem: deal.II "
@@ -20,6 +22,7 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
   declare_dem_parameters(prm);
   declare_group_parameters(prm, groups);
   declare_load_parameters(prm, loads);
+  declare_wall_parameters(prm, walls);
   declare_verification_parameters(prm);
 #ifdef DEMBRIDGE_HAVE_FEM
   fem::declare_parameters(prm);
@@ -116,13 +119,15 @@ std::unique_ptr<dealii::ParameterHandler> read_case(const std::string& file,
   declare_all_parameters(first);
   parse_file(first, file, {}, true);
   for (const auto& o : overrides)
-    if (o.rfind("Groups/names", 0) == 0 || o.rfind("Loads/names", 0) == 0)
+    if (o.rfind("Groups/names", 0) == 0 || o.rfind("Loads/names", 0) == 0 ||
+        o.rfind("Walls/names", 0) == 0)
       apply_override(first, o);
   const auto groups = split_names(first.get({"Groups"}, "names"));
   const auto loads = split_names(first.get({"Loads"}, "names"));
+  const auto walls = split_names(first.get({"Walls"}, "names"));
   // Pass 2: strict, with every named subsection declared.
   auto prm = std::make_unique<dealii::ParameterHandler>();
-  declare_all_parameters(*prm, groups, loads);
+  declare_all_parameters(*prm, groups, loads, walls);
   parse_file(*prm, file, overrides, false);
   return prm;
 }

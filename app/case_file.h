@@ -13,7 +13,8 @@ namespace dembridge::app
 /// Declares the top-level entry `Mode` and every module's subsections.
 void declare_all_parameters(dealii::ParameterHandler& prm,
                             const std::vector<std::string>& group_names = {},
-                            const std::vector<std::string>& load_names = {});
+                            const std::vector<std::string>& load_names = {},
+                            const std::vector<std::string>& wall_names = {});
 
 /// Parses `file` plus the `Section/Key=value` overrides; throws std::runtime_error with a
 /// one-line message naming the file (or override) and the reason.

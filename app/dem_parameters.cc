@@ -1,4 +1,5 @@
 #include "dem_parameters.h"
+#include "contact_parameters.h"
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -162,6 +163,8 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("stress histogram bins", "20", Integer(1),
                     "Bins of the particle stress histogram (thesis Fig. 36) in summary.json.");
   prm.leave_subsection();
+
+  declare_contact_parameters(prm);
 
   prm.enter_subsection("Output");
   prm.declare_entry("history interval", "100", Integer(1), "Steps between history.csv rows.");
@@ -393,6 +396,8 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     prm.leave_subsection();
     c.loads.push_back(lc);
   }
+
+  parse_contact_parameters(prm, c);
 
   prm.enter_subsection("Measurements");
   c.measure.deflection_group = prm.get("deflection group");

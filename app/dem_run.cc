@@ -1,4 +1,5 @@
 #include "dem_run.h"
+#include "contact_output.h"
 #include "dem/measurements/measurements.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
@@ -73,6 +74,7 @@ public:
     for (const auto& g : model.groups)
       for (const char* q : {"ux", "uy", "uz", "fx", "fy", "fz"})
         history_ << ',' << g.name << '_' << q;
+    history_ << contacts_.history_header();
     history_ << '\n' << std::setprecision(10);
   }
 
@@ -122,6 +124,7 @@ public:
       history_ << ',' << u.x() << ',' << u.y() << ',' << u.z() << ',' << f.x() << ',' << f.y()
                << ',' << f.z();
     }
+    contacts_.history_row(history_, s.time());
     history_ << '\n';
   }
 
@@ -150,6 +153,7 @@ public:
 
 private:
   const dem::Model& model_;
+  ContactOutput contacts_{model_}; ///< contact and wall columns of history.csv
   ParticleVtuSeries vtu_;
   bool write_vtu_;
   std::filesystem::path history_path_;
@@ -236,6 +240,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                    {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
     j["energy_balance_error"] = r.energy_balance_error;
     j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+    ContactOutput(model).summary(j, r.time);
   }
 
   double mean_coordination = 0;

@@ -132,7 +132,7 @@ int main(int argc, char** argv)
     if (*print_cmd)
     {
       dealii::ParameterHandler prm;
-      dembridge::app::declare_all_parameters(prm, {"<name>"}, {"<name>"});
+      dembridge::app::declare_all_parameters(prm, {"<name>"}, {"<name>"}, {"<name>"});
       prm.print_parameters(std::cout, dealii::ParameterHandler::Text);
       return 0;
     }

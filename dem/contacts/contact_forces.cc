@@ -9,7 +9,7 @@
 
 namespace dembridge::dem
 {
-ContactForces::ContactForces(const ContactMaterial& material, const std::vector<WallConfig>& walls)
+ContactForces::ContactForces(const ContactConfig& material, const std::vector<WallConfig>& walls)
     : material_(material)
 {
   material_.validate();
@@ -184,6 +184,36 @@ void ContactForces::add_forces(ParticleStore& p, double time, double dt, bool re
     with_law.operator()<HertzMindlin>();
   if (monitor_.enabled)
     update_monitor(p, time, dt);
+  if (platens_.enabled)
+  {
+    auto& t = platens_;
+    const auto lo = std::size_t(t.lower), up = std::size_t(t.upper);
+    t.stress = -(wall_force_[lo].dot(walls_[lo].normal) + wall_force_[up].dot(walls_[up].normal)) /
+               (2.0 * t.area);
+    t.strain = (walls_[lo].displacement(time).dot(walls_[lo].normal) +
+                walls_[up].displacement(time).dot(walls_[up].normal)) /
+               t.length;
+    if (t.stress > t.peak_stress)
+      t.peak_stress = t.stress, t.strain_at_peak = t.strain, t.time_at_peak = time;
+  }
+}
+
+void ContactForces::measure_platens(int lower, int upper, double area)
+{
+  const int n = int(walls_.size());
+  if (lower < 0 || upper < 0 || lower >= n || upper >= n || lower == upper)
+    throw InputError("Contacts/platens: expected two different walls");
+  const Wall &lo = walls_[std::size_t(lower)], &up = walls_[std::size_t(upper)];
+  if (!(lo.normal.dot(up.normal) < -0.999))
+    throw InputError("Contacts/platens: the walls '" + lo.name + "' and '" + up.name +
+                     "' must face each other (opposite normals)");
+  const double length = (up.point0 - lo.point0).dot(lo.normal);
+  if (!(length > 0) || !(area > 0))
+    throw InputError("Contacts/platens: the specimen must lie between the walls '" + lo.name +
+                     "' and '" + up.name + "'");
+  platens_ = {};
+  platens_.enabled = true;
+  platens_.lower = lower, platens_.upper = upper, platens_.area = area, platens_.length = length;
 }
 
 template <class Law, bool rolling, bool damping, bool record>
@@ -390,9 +420,9 @@ void ContactForces::add_energy(EnergyBalance& e) const
 // Stability limit of the contact springs. For a spring k between bodies of inverse masses
 // 1/m_i, 1/m_j the frequency is omega^2 = k (1/m_i + 1/m_j); a tangential spring at the surface
 // also turns both spheres (1/m + R^2/I each), a rolling spring only turns them (1/I each). Every
-// pair is bounded by its lighter partner twice, and a wall contact by the sphere alone with the
-// wall's constants. Central differences with the dashpot from v^{n-1/2} are stable for
-// dt <= 2/omega (sqrt(1 + zeta^2) - zeta) (time_step.h).
+// pair is bounded by its lighter partner twice, and a wall contact (if there are walls) by the
+// sphere alone with the wall's constants. Central differences with the dashpot from v^{n-1/2} are
+// stable for dt <= 2/omega (sqrt(1 + zeta^2) - zeta) (time_step.h).
 //   linear: the given k_n, k_t; k_r from k_n;
 //   Hertz-Mindlin: the stiffnesses grow with the overlap, evaluated at a reference overlap of
 //   5 % of R* (beyond it an impact has left Hertz's small-strain theory), and not above the
@@ -410,7 +440,7 @@ double ContactForces::critical_time_step(const ParticleStore& p) const
     const double m = p.mass[i], I = p.inertia[i], R = p.radius[i];
     const double tangential_compliance = 1.0 / m + R * R / I;
     double omega2 = 0;
-    for (int wall = 0; wall < 2; ++wall)
+    for (int wall = 0; wall < (walls_.empty() ? 1 : 2); ++wall)
     {
       const double share = wall ? 1.0 : 2.0; // both partners as light as this one
       const double r_eff = wall ? R : 0.5 * R;

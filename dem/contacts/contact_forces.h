@@ -17,7 +17,7 @@
 //   wall_work        work of the moving walls, 1/2 (F^{n-1} + F^n) . (u_w^n - u_w^{n-1}), F the
 //                    walls' force on the particles.
 // A wall's force (force_on_wall) is the sum of the forces the particles exert on it.
-#include "dem/contacts/contact_material.h"
+#include "dem/contacts/contact_config.h"
 #include "dem/contacts/contact_monitor.h"
 #include "dem/contacts/hertz_mindlin.h"
 #include "dem/contacts/linear_spring_dashpot.h"
@@ -35,7 +35,7 @@ class ContactForces : public StepContribution
 {
 public:
   /// Validates the material and the walls (InputError naming Contacts/... or Wall NAME/...).
-  ContactForces(const ContactMaterial& material, const std::vector<WallConfig>& walls);
+  ContactForces(const ContactConfig& material, const std::vector<WallConfig>& walls);
 
   void attach(const ParticleStore& p, const BondStore& bonds) override;
   void add_forces(ParticleStore& p, double time, double dt, bool record) override;
@@ -44,7 +44,7 @@ public:
   /// Stability limit of the contacts' springs (see contact_forces.cc).
   double critical_time_step(const ParticleStore& p) const override;
 
-  const ContactMaterial& material() const { return material_; }
+  const ContactConfig& material() const { return material_; }
   /// Contacts (pairs and sphere-wall) that touched at the last step.
   std::size_t active_contacts() const { return n_active_; }
   std::size_t walls() const { return walls_.size(); }
@@ -52,6 +52,10 @@ public:
   /// Force the particles exerted on wall w at the last step (N).
   const Vec3& force_on_wall(std::size_t w) const { return wall_force_[w]; }
   const ContactMonitor& monitor() const { return monitor_; }
+  /// Measures the stress-strain curve between walls `lower` and `upper` (facing each other) on
+  /// a specimen of cross-section `area` (m^2); InputError names Contacts/platens.
+  void measure_platens(int lower, int upper, double area);
+  const PlatenTest& platens() const { return platens_; }
 
   // Throughput and cost of the neighbour search (benchmarks)
   long list_builds() const { return list_.builds(); }
@@ -65,7 +69,7 @@ private:
   void rebuild(const ParticleStore& p, double time);
   void update_monitor(const ParticleStore& p, double time, double dt);
 
-  ContactMaterial material_;
+  ContactConfig material_;
   std::vector<Wall> walls_;
   LinearSpringDashpot linear_pair_, linear_wall_;
   HertzMindlin hertz_pair_, hertz_wall_;
@@ -99,6 +103,7 @@ private:
   double stored_ = 0, slip_ = 0, damping_work_ = 0, damping_lead_ = 0, wall_work_ = 0;
 
   ContactMonitor monitor_;
+  PlatenTest platens_;
   double search_seconds_ = 0;
   long contact_updates_ = 0;
 };

@@ -31,3 +31,22 @@ struct ContactMonitor
   }
 };
 } // namespace dembridge::dem
+
+namespace dembridge::dem
+{
+/// A uniaxial test between two walls (platens) facing each other: the stress is the mean force
+/// with which the particles press on the platens over the specimen's cross-section A, the strain
+/// the platens' approach over their initial distance L_0 (compression positive):
+///   sigma = (F_lower + F_upper) / (2 A),   F = -(force on the wall) . n  (n into the specimen)
+///   eps   = (u_lower . n_lower + u_upper . n_upper) / L_0
+/// evaluated every step, so the peak is not sampled at the history interval.
+struct PlatenTest
+{
+  bool enabled = false;
+  int lower = -1, upper = -1;    ///< wall indices
+  double area = 0;               ///< m^2
+  double length = 0;             ///< L_0, m
+  double stress = 0, strain = 0; ///< at the last step, Pa and 1
+  double peak_stress = 0, strain_at_peak = 0, time_at_peak = 0;
+};
+} // namespace dembridge::dem

@@ -9,7 +9,7 @@
 // A sphere i touches the wall when its gap g = (x_i - point(t)) . n - R_i is negative; the
 // overlap is -g. For Hertz the wall is rigid (E -> infinity) and flat (R -> infinity), so
 // R* = R_i, m* = m_i, 1/E* = (1 - nu^2)/E, 1/G* = (2 - nu)/G.
-#include "dem/contacts/contact_material.h"
+#include "dem/contacts/contact_config.h"
 #include <algorithm>
 
 namespace dembridge::dem

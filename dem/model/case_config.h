@@ -2,6 +2,7 @@
 // Plain description of a DEM case, independent of how it was read (the app fills it from a
 // deal.II parameter file; tests and benchmarks fill it directly).
 #include "dem/bonds/bond_model.h"
+#include "dem/contacts/contact_config.h"
 #include "dem/model/groups.h"
 #include "dem/model/loads.h"
 #include <limits>
@@ -102,5 +103,7 @@ struct CaseConfig
   std::vector<LoadConfig> loads;
   RunConfig run;
   MeasureConfig measure;
+  ContactConfig contacts;     ///< post-failure contacts (dem/contacts/); model none: off
+  std::vector<WallConfig> walls; ///< rigid planes, contact partners of the particles
 };
 } // namespace dembridge::dem

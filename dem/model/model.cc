@@ -1,5 +1,6 @@
 #include "dem/model/model.h"
 #include "dem/bonds/bonding.h"
+#include "dem/contacts/contact_forces.h"
 #include "dem/packing/packings.h"
 #include <numbers>
 #include <sstream>
@@ -66,7 +67,7 @@ Model build_model(const CaseConfig& c)
       add_bond(p, m.bonds, c.bonds.material, i, j);
     mark_reference_configuration(p);
   }
-  if (m.bonds.size() == 0)
+  if (m.bonds.size() == 0 && !c.contacts.enabled()) // contacts alone make a granular model
     throw InputError("Bonds: no bond was formed (contact radius multiplier " +
                      std::to_string(c.bonds.contact_radius_multiplier) +
                      " too small for the particle spacing?)");
@@ -111,6 +112,32 @@ Model build_model(const CaseConfig& c)
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
   m.critical = estimate_critical_time_step(p, m.bonds, c.run.particle_damping);
+  if (c.contacts.enabled() || !c.walls.empty())
+  {
+    if (c.run.static_solver)
+      throw InputError("Contacts/model: the static solver solves the bond network alone; "
+                       "contacts and walls need Simulation/solver = explicit");
+    auto contacts = std::make_shared<ContactForces>(c.contacts, c.walls);
+    m.critical.contact_bound =
+        contacts->critical_time_step(p) / std::sqrt(1.0 + c.run.particle_damping);
+    if (!c.contacts.platens.empty())
+    {
+      // cross-section of the specimen normal to the platens (the particles' extent)
+      std::vector<int> index;
+      for (const auto& name : c.contacts.platens)
+        for (std::size_t w = 0; w < c.walls.size(); ++w)
+          if (c.walls[w].name == name)
+            index.push_back(int(w));
+      if (c.contacts.platens.size() != 2 || index.size() != 2)
+        throw InputError("Contacts/platens: expected the names of two walls 'lower, upper'");
+      const auto [lo, hi] = reference_extent(p);
+      int axis;
+      c.walls[std::size_t(index[0])].normal.cwiseAbs().maxCoeff(&axis);
+      const Vec3 size = hi - lo;
+      contacts->measure_platens(index[0], index[1], size.prod() / size[axis]);
+    }
+    m.contributions.push_back(contacts);
+  }
   if (c.run.time_step > 0)
   {
     if (c.run.time_step > m.critical.critical())

@@ -15,6 +15,8 @@
 // opposes the motion, so it lowers the limit by 1/sqrt(1 + gamma).
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
+#include <algorithm>
+#include <limits>
 
 namespace dembridge::dem
 {
@@ -22,7 +24,9 @@ struct TimeStepEstimate
 {
   double thesis_eq48 = 0; ///< s, 0.22 sqrt(m/k) (translations only)
   double bond_bound = 0;  ///< s, element eigenvalue bound incl. rotations and damping
-  double critical() const { return bond_bound; }
+  /// s, contacts and walls (ContactForces::critical_time_step); infinity without contacts
+  double contact_bound = std::numeric_limits<double>::infinity();
+  double critical() const { return std::min(bond_bound, contact_bound); }
 };
 
 TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondStore& bonds,

@@ -52,7 +52,7 @@ struct Scene
     constraints.push_back({int(groups.size()) - 1, std::uint8_t(dof_rx | dof_ry | dof_rz)});
   }
   /// dt < 0: |dt| times the contacts' critical step.
-  void start(const ContactMaterial& m, const std::vector<WallConfig>& walls, double dt)
+  void start(const ContactConfig& m, const std::vector<WallConfig>& walls, double dt)
   {
     contacts = std::make_unique<ContactForces>(m, walls);
     if (dt < 0)
@@ -63,9 +63,9 @@ struct Scene
   }
 };
 
-ContactMaterial hertz(double E, double nu, double e = 1.0, double mu = 0.0)
+ContactConfig hertz(double E, double nu, double e = 1.0, double mu = 0.0)
 {
-  ContactMaterial m;
+  ContactConfig m;
   m.model = ContactModel::hertz_mindlin;
   m.youngs_modulus = E;
   m.poisson_ratio = nu;
@@ -75,9 +75,9 @@ ContactMaterial hertz(double E, double nu, double e = 1.0, double mu = 0.0)
   return m;
 }
 
-ContactMaterial linear(double kn, double e = 1.0, double mu = 0.0)
+ContactConfig linear(double kn, double e = 1.0, double mu = 0.0)
 {
-  ContactMaterial m;
+  ContactConfig m;
   m.model = ContactModel::linear;
   m.normal_stiffness = kn;
   m.restitution = e;
@@ -179,7 +179,7 @@ struct Incline
 {
   double s1, s2, v1, v2;
 };
-Incline on_incline(const ContactMaterial& m, double theta, double t1, double t2)
+Incline on_incline(const ContactConfig& m, double theta, double t1, double t2)
 {
   const double R = 0.01, rho = 2500;
   const Vec3 n(-std::sin(theta), 0, std::cos(theta));
@@ -217,7 +217,7 @@ Incline on_incline(const ContactMaterial& m, double theta, double t1, double t2)
 TEST(ContactFriction, StickBelowAndSlideAboveTheFrictionAngle)
 {
   const double mu = 0.3, deg = std::numbers::pi / 180;
-  for (const ContactMaterial& m : {linear(1e5, 0.3, mu), hertz(1e8, 0.3, 0.3, mu)})
+  for (const ContactConfig& m : {linear(1e5, 0.3, mu), hertz(1e8, 0.3, 0.3, mu)})
   {
     const std::string law = m.model == ContactModel::linear ? "linear" : "hertz_mindlin";
     // below: 10 deg < atan(0.3) = 16.7 deg; after the spring has settled nothing moves
@@ -243,7 +243,7 @@ TEST(ContactFriction, RollingSphereStopsAtTheRollingResistanceDistance)
   const double R = 0.01, rho = 2500, v0 = 0.5, mu_r = 0.1;
   for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
   {
-    ContactMaterial m =
+    ContactConfig m =
         model == ContactModel::linear ? linear(1e5, 0.5, 0.5) : hertz(1e8, 0.3, 0.5, 0.5);
     m.rolling_friction = mu_r;
     Scene s;
@@ -278,7 +278,7 @@ TEST(ContactSpring, RigidRotationKeepsTheTangentialForce)
   BondStore bonds;
   p.add(Vec3(-(R - 0.5 * delta), 0, 0), R, 2500);
   p.add(Vec3(R - 0.5 * delta, 0, 0), R, 2500);
-  ContactMaterial m = linear(1e5, 1.0, 10.0); // friction high enough never to slip
+  ContactConfig m = linear(1e5, 1.0, 10.0); // friction high enough never to slip
   ContactForces contacts(m, {});
   contacts.attach(p, bonds);
   auto tangential_force = [&]()
@@ -326,7 +326,7 @@ TEST(ContactEnergy, BalanceThroughImpactsWithFrictionAndDamping)
   for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
     for (bool wall : {false, true})
     {
-      ContactMaterial m =
+      ContactConfig m =
           model == ContactModel::linear ? linear(1e6, 0.6, 0.3) : hertz(1e9, 0.25, 0.6, 0.3);
       m.rolling_friction = 0.05;
       m.monitor = true;
@@ -362,7 +362,7 @@ TEST(ContactEnergy, PlatenSqueezesASphere)
 {
   for (const ContactModel model : {ContactModel::linear, ContactModel::hertz_mindlin})
   {
-    const ContactMaterial m =
+    const ContactConfig m =
         model == ContactModel::linear ? linear(1e5, 0.5, 0.4) : hertz(1e8, 0.25, 0.5, 0.4);
     Scene s;
     const double R = 0.01, squeeze = 2e-4;

@@ -1,4 +1,4 @@
-#include "dem/contacts/contact_material.h"
+#include "dem/contacts/contact_config.h"
 #include <cmath>
 #include <numbers>
 
@@ -21,7 +21,7 @@ std::string contact_model_selection()
   return s;
 }
 
-double ContactMaterial::damping_ratio() const
+double ContactConfig::damping_ratio() const
 {
   if (!(restitution < 1))
     return 0.0;
@@ -29,7 +29,7 @@ double ContactMaterial::damping_ratio() const
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
-void ContactMaterial::validate() const
+void ContactConfig::validate() const
 {
   if (!enabled())
     return;

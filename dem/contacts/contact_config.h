@@ -13,6 +13,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dembridge::dem
 {
@@ -29,7 +30,8 @@ inline constexpr std::array<std::string_view, 3> contact_model_names = {
 ContactModel contact_model_from_name(std::string_view name);
 std::string contact_model_selection(); ///< "none|linear|hertz_mindlin"
 
-struct ContactMaterial
+/// The contacts of a case (CaseConfig::contacts).
+struct ContactConfig
 {
   ContactModel model = ContactModel::none;
   double youngs_modulus = 0;       ///< E of the particles (Hertz-Mindlin), Pa
@@ -42,6 +44,9 @@ struct ContactMaterial
   double rolling_stiffness = 0;    ///< k_r, N·m/rad; 0: 2.25 k_n mu_r^2 R*^2 (Ai et al.)
   double skin = 0;                 ///< Verlet skin, m; 0: 0.2 x the smallest radius
   bool monitor = false;            ///< record the first contact (duration, restitution, ...)
+  /// Two walls (lower, upper) that load a specimen between them: their forces and approach give
+  /// the stress-strain curve (ContactForces::platens); empty: none.
+  std::vector<std::string> platens;
 
   bool enabled() const { return model != ContactModel::none; }
   /// Throws InputError naming Contacts/<key> if a value is missing or non-physical.
