@@ -260,6 +260,17 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
     }
   }
 
+  for (const auto& d : settings.prescribed)
+  {
+    if (d.index < 0 || std::size_t(d.index) >= n)
+      throw InputError("static solver: prescribed displacement of particle " +
+                       std::to_string(d.index) + ", which does not exist");
+    fixed[d.index] |= d.dofs;
+    for (int k = 0; k < 6; ++k)
+      if (d.dofs & (1u << k))
+        g[6 * d.index + k] = d.value[k];
+  }
+
   // A bond cluster with no support stays at rest when unloaded (the explicit solver leaves it
   // there) and is held in place; loaded, it would accelerate forever: no static solution.
   const std::vector<std::uint8_t> constrained = fixed; // before holding idle clusters

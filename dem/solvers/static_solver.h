@@ -25,6 +25,7 @@
 #include "dem/model/model.h"
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace dembridge::dem
 {
@@ -54,6 +55,18 @@ struct StaticSettings
   /// load as the explicit solver has it at that time (ramp factor, end_time), a prescribed
   /// motion as the displacement its ramped velocity has accumulated by then.
   double time = std::numeric_limits<double>::infinity();
+
+  /// Per-particle prescribed displacements beside the model's supports and loads, for fields a
+  /// group-wide load cannot describe (the affine boundary field of elasticity_tensor.h): the DOFs
+  /// in `dofs` (DofBit mask) of particle `index` held at `value` = [u_x, u_y, u_z, theta_x,
+  /// theta_y, theta_z] (m, rad). Applied after the loads, so they win on a shared DOF.
+  struct PrescribedDisplacement
+  {
+    int index = 0;
+    std::uint8_t dofs = 0;
+    Eigen::Matrix<double, 6, 1> value = Eigen::Matrix<double, 6, 1>::Zero();
+  };
+  std::vector<PrescribedDisplacement> prescribed;
 };
 
 struct StaticResult
