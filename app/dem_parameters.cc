@@ -1,5 +1,6 @@
 #include "dem_parameters.h"
 #include "contact_parameters.h"
+#include "damage_parameters.h"
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -74,6 +75,10 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "Random packing: stop growing at this porosity (or when jammed).");
   prm.declare_entry("save file", "", Anything(),
                     "Write the generated particles to this CSV file (x, y, z, r), for reuse.");
+  prm.declare_entry("remove box min", "0, 0, 0", vector3,
+                    "A notch: particles whose centres lie in the box [remove box min, remove box "
+                    "max] (m) are removed before bonding; both 0: none.");
+  prm.declare_entry("remove box max", "0, 0, 0", vector3, "Upper corner of the remove box (m).");
   prm.leave_subsection();
 
   prm.enter_subsection("Bonds");
@@ -172,6 +177,8 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "Steps between ParaView snapshots; 0: first and last step only.");
   prm.declare_entry("write vtu", "true", Bool(), "Write ParaView files (particles, bonds).");
   prm.leave_subsection();
+
+  declare_damage_parameters(prm);
 }
 
 void declare_group_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
@@ -252,6 +259,8 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     s.file = prm.get("file");
     s.density = prm.get_double("density");
     s.scale_density_by_porosity = prm.get_bool("scale density by porosity");
+    s.remove_box_min = get_vec3(prm, "remove box min");
+    s.remove_box_max = get_vec3(prm, "remove box max");
     if (s.kind == K::file && s.file.empty())
       throw dem::InputError("Particles/file: source = file needs a file name");
   }
@@ -425,6 +434,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
   if (!(c.measure.deflection_direction.norm() > 0))
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
   prm.leave_subsection();
+  c.damage = parse_damage_parameters(prm);
   return c;
 }
 

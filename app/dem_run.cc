@@ -1,5 +1,7 @@
 #include "dem_run.h"
 #include "contact_output.h"
+#include "crack_output.h"
+#include "dem/measurements/failure_measurements.h"
 #include "dem/measurements/measurements.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
@@ -61,7 +63,8 @@ class CaseObserver : public dem::RunObserver
 {
 public:
   CaseObserver(const std::filesystem::path& dir, const OutputSettings& out, const dem::Model& model)
-      : model_(model), vtu_(dir), write_vtu_(out.write_vtu), history_path_(dir / "history.csv")
+      : model_(model), vtu_(dir), write_vtu_(out.write_vtu), history_path_(dir / "history.csv"),
+        cracks_(dir, out.write_vtu)
   {
     // Written under a temporary name and renamed when the run completes, so an interrupted
     // run never leaves a history that looks complete.
@@ -70,7 +73,7 @@ public:
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
     history_ << "step,time,kinetic_energy,strain_energy,damping_energy,external_work,"
                 "fracture_energy,contact_strain_energy,friction_energy,contact_damping_energy,"
-                "wall_work,energy_balance_error,max_speed,unbalanced_force_ratio";
+                "wall_work,energy_balance_error,max_speed,unbalanced_force_ratio,n_broken_bonds";
     for (const auto& g : model.groups)
       for (const char* q : {"ux", "uy", "uz", "fx", "fy", "fz"})
         history_ << ',' << g.name << '_' << q;
@@ -85,6 +88,15 @@ public:
     fixed_ = fixed, loaded_ = loaded, axis_ = axis;
   }
   const std::vector<double>& axial_displacements() const { return du_; }
+  /// Records the load a three-point bending specimen carries (the supports' vertical
+  /// reactions) against the loaded group's downward displacement.
+  void track_flexural(int pin, int roller, int loaded)
+  {
+    pin_ = pin, roller_ = roller, top_ = loaded;
+  }
+  const std::vector<double>& flexural_loads() const { return flex_load_; }
+  const std::vector<double>& flexural_deflections() const { return flex_u_; }
+  const CrackOutput& cracks() const { return cracks_; }
   /// Axial load history: the loaded end's reaction, or (force control) minus the fixed end's.
   const std::vector<double>& axial_forces(bool from_fixed_end) const
   {
@@ -111,13 +123,20 @@ public:
       force_.push_back(s.group_force(loaded_)[axis_]);
       fixed_force_.push_back(-s.group_force(fixed_)[axis_]);
     }
+    if (top_ >= 0)
+    {
+      flex_load_.push_back(s.group_force(pin_).z() + s.group_force(roller_).z());
+      flex_u_.push_back(-s.group_mean_displacement(top_).z());
+    }
+    cracks_.update(s);
     const auto& e = s.energy();
     if (e.kinetic + e.strain > 0)
       kinetic_share_.emplace_back(s.time(), e.kinetic / (e.kinetic + e.strain));
     history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
              << e.damping << ',' << e.external << ',' << e.fracture << ',' << e.contact_strain
              << ',' << e.friction << ',' << e.contact_damping << ',' << e.wall_work << ','
-             << e.relative_error() << ',' << s.max_speed() << ',' << s.unbalanced_force_ratio();
+             << e.relative_error() << ',' << s.max_speed() << ',' << s.unbalanced_force_ratio()
+             << ',' << s.n_broken_bonds();
     for (std::size_t g = 0; g < s.groups().size(); ++g)
     {
       const dem::Vec3 u = s.group_mean_displacement(int(g)), f = s.group_force(int(g));
@@ -132,6 +151,8 @@ public:
   {
     if (write_vtu_)
       vtu_.write(model_.particles, model_.bonds, s.time(), s.steps());
+    cracks_.update(s);
+    cracks_.snapshot(s.time(), s.steps());
   }
 
   void on_progress(const dem::ExplicitSolver& s, double fraction, double rate, double eta) override
@@ -149,6 +170,7 @@ public:
     std::filesystem::rename(history_path_.string() + ".part", history_path_);
     if (write_vtu_)
       vtu_.finish();
+    cracks_.finish();
   }
 
 private:
@@ -161,6 +183,9 @@ private:
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
   std::vector<double> du_, force_, fixed_force_;
   std::vector<std::pair<double, double>> kinetic_share_;
+  int pin_ = -1, roller_ = -1, top_ = -1;
+  std::vector<double> flex_load_, flex_u_;
+  CrackOutput cracks_;
 };
 } // namespace
 
@@ -178,6 +203,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   nlohmann::json j;
   dem::RunResult r;
   std::vector<double> axial_du, axial_loaded, axial_fixed; // explicit runs: load history
+  std::vector<double> flexural_load, flexural_u;
+  std::vector<dem::CrackEvent> cracks;
   if (config.run.static_solver)
   {
     const dem::StaticResult st = dem::solve_static(model);
@@ -216,6 +243,13 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
           model.group_index(config.measure.modulus_fixed_group, "Measurements/modulus groups"),
           model.group_index(config.measure.modulus_loaded_group, "Measurements/modulus groups"),
           config.measure.modulus_axis);
+    if (config.measure.flexural_groups.size() == 4)
+    {
+      const auto& f = config.measure.flexural_groups;
+      const auto where = "Measurements/flexural groups";
+      observer.track_flexural(model.group_index(f[0], where), model.group_index(f[1], where),
+                              model.group_index(f[2], where));
+    }
     dem::RunSchedule schedule;
     schedule.record_interval = out.history_interval;
     schedule.snapshot_interval = out.snapshot_interval;
@@ -224,6 +258,11 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     axial_du = observer.axial_displacements();
     axial_loaded = observer.axial_forces(false);
     axial_fixed = observer.axial_forces(true);
+    flexural_load = observer.flexural_loads();
+    flexural_u = observer.flexural_deflections();
+    cracks = observer.cracks().cracks();
+    add_crack_summary(j, cracks, model.particles, model.bonds, config.measure.stress_layers,
+                      config.measure.stress_layer_axis);
     const auto [share_max, share_final] = observer.kinetic_share();
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;
@@ -322,10 +361,18 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
     if (axial_du.size() >= 3)
     {
-      const auto fit =
-          dem::fit_youngs_modulus(axial_du, a.force_controlled ? axial_fixed : axial_loaded, a);
+      const auto& force = a.force_controlled ? axial_fixed : axial_loaded;
+      // a specimen that broke: E from the elastic part of the curve (up to half the peak load)
+      const std::size_t n_fit =
+          cracks.empty() ? force.size() : std::max<std::size_t>(3, dem::records_before(force, 0.5));
+      const auto fit = dem::fit_youngs_modulus({axial_du.begin(), axial_du.begin() + long(n_fit)},
+                                               {force.begin(), force.begin() + long(n_fit)}, a);
       j["youngs_modulus_fit"] = fit.youngs_modulus;
       j["youngs_modulus_fit_points"] = fit.points;
+      // the load transmitted through the specimen, read at the fixed end as a testing machine's
+      // load cell does: the driven end's reaction also carries the local damping's drag on the
+      // moving particles (5 % at the peak of tension_failure.prm), and its noise
+      add_peak_stress(j, axial_fixed, axial_du, a.area, a.gauge_length);
     }
     // RVE = the specimen between the planes where the end loads act (gauge length x area).
     j["boundary_stress"] = a.stress;
@@ -361,6 +408,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["flexural_modulus_point_load"] = f.flexural_modulus_point;
     j["flexural_modulus"] = f.flexural_modulus;
     j["flexural_modulus_bottom"] = f.flexural_modulus_bottom;
+    add_peak_load(j, flexural_load, flexural_u);
   }
   if (r.natural_frequency)
     j["natural_frequency"] = *r.natural_frequency;

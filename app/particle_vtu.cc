@@ -1,4 +1,5 @@
 #include "particle_vtu.h"
+#include "dem/bonds/bond_stress.h"
 #include "dem/measurements/particle_stress.h"
 #include <cstdio>
 #include <deal.II/base/data_out_base.h>
@@ -107,9 +108,9 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   }
   // Bonds
   {
-    const std::vector<std::string> names = {"normal_force",   "shear_force", "twisting_moment",
-                                            "bending_moment", "force",       "force",
-                                            "force",          "state"};
+    const std::vector<std::string> names = {
+        "normal_force", "shear_force", "twisting_moment", "bending_moment", "force", "force",
+        "force",        "state",       "tensile_stress",  "shear_stress",   "damage"};
     Ranges ranges = {{4, 6, "force", component_is_part_of_vector}};
     std::vector<dealii::DataOutBase::Patch<1, 3>> patches(b.size());
     for (std::size_t k = 0; k < b.size(); ++k)
@@ -122,9 +123,15 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
       patch.reference_cell = dealii::ReferenceCells::Line;
       patch.data.reinit(unsigned(names.size()), 2);
       const dem::Vec3 e = (xb - xa).normalized();
-      const dem::Vec3 F = b.force[k], M = b.moment[k];
+      // a broken bond carries nothing (its last recorded forces are those before the break)
+      const bool bonded = dem::is_bonded(b.state[k]);
+      const dem::Vec3 F = bonded ? b.force[k] : dem::Vec3::Zero();
+      const dem::Vec3 M = bonded ? b.moment[k] : dem::Vec3::Zero();
       const double normal = -F.dot(e); // F is the force on b: pulling b back is tension
       const double twist = M.dot(e);
+      // beam theory on the section (bond_stress.h) from the forces the bond carries
+      const dem::BondStress st =
+          dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], b.failure.moment_factor);
       for (unsigned v = 0; v < 2; ++v)
       {
         unsigned row = 0;
@@ -133,7 +140,10 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
         patch.data(row++, v) = float(twist);
         patch.data(row++, v) = float((M - twist * e).norm());
         put(patch.data, row, v, F);
-        patch.data(row++, v) = float(b.state[k] == dem::BondState::intact ? 0 : 1);
+        patch.data(row++, v) = float(int(b.state[k])); // 0 intact, 1 softening, 2 broken
+        patch.data(row++, v) = float(st.tensile);
+        patch.data(row++, v) = float(st.shear);
+        patch.data(row++, v) = float(b.damage.empty() ? 0.0 : b.damage[k]);
       }
     }
     const std::string file = std::string("bonds_") + tag + ".vtu";

@@ -3,8 +3,9 @@
 //  - particles: one vertex patch each, with radius, displacement, velocity, angular velocity,
 //    force, moment, group mask and coordination;
 //  - bonds: one line patch each (particle centre to particle centre), with normal force
-//    (tension positive), shear force, twisting moment, bending moment, the force vector and the
-//    bond state (0 intact, 1 broken).
+//    (tension positive), shear force, twisting moment, bending moment, the force vector, the
+//    bond state (0 intact, 1 softening, 2 broken), the tensile and shear stress of beam theory on
+//    the bond section (dem/bonds/bond_stress.h, Pa) and the damage D.
 // Snapshots go to DIR/particles_NNNNNN.vtu and DIR/bonds_NNNNNN.vtu; the .pvd time series are
 // written by finish().
 #include "dem/bonds/bond_store.h"

@@ -43,11 +43,12 @@ void record_bond_forces(const ParticleStore& p, BondStore& b)
 {
   for (std::size_t k = 0; k < b.size(); ++k)
   {
-    if (b.state[k] != BondState::intact)
+    if (!is_bonded(b.state[k]))
       continue;
     const BondForces f = elastic_bond_forces(p, b, k);
-    b.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
-    b.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+    const double carried = b.load_factor(k); // 1 - D of a softening bond (bond_damage.h)
+    b.force[k] = carried * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+    b.moment[k] = carried * Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
   }
 }
 
@@ -62,18 +63,20 @@ ParticleStresses particle_stresses(const ParticleStore& p, const BondStore& b, S
 
   for (std::size_t k = 0; k < b.size(); ++k)
   {
-    if (b.state[k] != BondState::intact)
+    if (!is_bonded(b.state[k]))
       continue;
     const int ia = b.a[k], ib = b.b[k];
     const BondForces f = elastic_bond_forces(p, b, k);
-    s.strain_energy += f.strain_energy;
+    // a softening bond carries (1 - D) of its trial forces and stores (1 - D) of their energy
+    const double carried = b.load_factor(k);
+    s.strain_energy += carried * f.strain_energy;
     // Force on b is F at the contact point, on a it is -F: x_c - x_a = s L e, x_c - x_b =
     // (s - 1) L e, with L e the reference or the current chord.
     Vec3 F, chord;
     if (theory == StressTheory::small_strain)
-      F = linear_bond_force(p, b, k), chord = b.rest_length[k] * b.rest_axis[k];
+      F = carried * linear_bond_force(p, b, k), chord = b.rest_length[k] * b.rest_axis[k];
     else
-      F = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]), chord = p.position[ib] - p.position[ia];
+      F = carried * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]), chord = p.position[ib] - p.position[ia];
     const double s_c = b.contact_fraction[k];
     s.sigma[ib] += ((s_c - 1.0) * chord) * F.transpose();
     s.sigma[ia] -= (s_c * chord) * F.transpose();

@@ -3,7 +3,8 @@
 //
 // Particle stress (eq. 59-62): the average stress in sphere p is
 //     sigma^(p)_ij = (1 / V_p) sum_c (x_c - x_p)_i F_j^(c),
-// summed over the particle's intact bonds, with x_c the bond's contact point and F^(c) the
+// summed over the particle's bonds that are not broken (a softening bond with its (1 - D) share,
+// bond_damage.h), with x_c the bond's contact point and F^(c) the
 // contact force ACTING ON p. (The thesis writes a minus sign because its F is the force the
 // particle exerts; both conventions give tension positive, compression negative.) External
 // loads and support reactions act at particle centres and add nothing; bond couples are
@@ -27,10 +28,10 @@ struct ParticleStresses
 {
   std::vector<Tensor3> sigma; ///< Pa, per particle
   std::vector<double> volume; ///< m^3, per particle (4/3 pi r^3)
-  double strain_energy = 0;   ///< J, elastic energy of the intact bonds
+  double strain_energy = 0;   ///< J, elastic energy of the bonds ((1 - D) U_e if softening)
 };
 
-/// Stores every intact bond's elastic contact force and couple (on b) of the current
+/// Stores every unbroken bond's elastic contact force and couple (on b, times 1 - D) of the current
 /// configuration in bonds.force / bonds.moment (what the explicit solver records on its
 /// recording steps); for states the explicit solver did not produce (static solution).
 void record_bond_forces(const ParticleStore& p, BondStore& bonds);

@@ -3,6 +3,7 @@
 // deal.II parameter file; tests and benchmarks fill it directly).
 #include "dem/bonds/bond_model.h"
 #include "dem/contacts/contact_config.h"
+#include "dem/bonds/bond_strength.h"
 #include "dem/model/groups.h"
 #include "dem/model/loads.h"
 #include <limits>
@@ -38,6 +39,9 @@ struct ParticleSource
   unsigned seed = 1;
   double target_porosity = 0.37;
   std::string save_file; ///< if set, the generated particles are written here (CSV)
+  /// A notch: particles whose centres lie inside [remove_box_min, remove_box_max] are removed
+  /// before bonding (no removal while the box has no volume).
+  Vec3 remove_box_min = Vec3::Zero(), remove_box_max = Vec3::Zero();
 };
 
 struct GroupConfig
@@ -105,5 +109,6 @@ struct CaseConfig
   MeasureConfig measure;
   ContactConfig contacts;     ///< post-failure contacts (dem/contacts/); model none: off
   std::vector<WallConfig> walls; ///< rigid planes, contact partners of the particles
+  DamageConfig damage; ///< bond strengths and failure law (dem/bonds/bond_strength.h)
 };
 } // namespace dembridge::dem

@@ -71,6 +71,12 @@ Model build_model(const CaseConfig& c)
     throw InputError("Bonds: no bond was formed (contact radius multiplier " +
                      std::to_string(c.bonds.contact_radius_multiplier) +
                      " too small for the particle spacing?)");
+  // Strengths in formation order, before any solver reorders the bonds: the same seed gives
+  // the same strength to the same pair whatever the thread count.
+  if (c.damage.law.mode != FailureMode::none && c.run.static_solver)
+    throw InputError("Damage/failure: the static solver solves the linear, undamaged bond "
+                     "network; bond failure needs Simulation/solver = explicit");
+  assign_bond_strengths(m.bonds, c.damage);
 
   if (c.groups.size() > 32)
     throw InputError("Groups/names: at most 32 groups");

@@ -49,6 +49,31 @@ void lattice(const ParticleSource& s, ParticleStore& p, int stacking)
     }
   }
 }
+/// Removes the particles whose centres lie inside the source's remove box (a notch cut before
+/// bonding); nothing while the box has no volume.
+void remove_notch(const ParticleSource& s, ParticleStore& p)
+{
+  const Vec3 lo = s.remove_box_min, hi = s.remove_box_max;
+  if (lo.isZero() && hi.isZero())
+    return;
+  if (!(hi.array() > lo.array()).all())
+    throw InputError("Particles/remove box max: must exceed 'remove box min' in every component");
+  ParticleStore kept;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const Vec3& x = p.position[i];
+    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all())
+      continue;
+    kept.add(x, p.radius[i], 1.0);
+    kept.set_mass(kept.size() - 1, p.mass[i]);
+    kept.reference_position.back() = p.reference_position[i];
+  }
+  if (kept.size() == p.size())
+    throw InputError("Particles/remove box min: the remove box holds no particle centre");
+  if (kept.size() == 0)
+    throw InputError("Particles/remove box min: the remove box holds every particle");
+  p = std::move(kept);
+}
 } // namespace
 
 void read_particle_file(const std::string& path, double density, ParticleStore& p)
@@ -160,6 +185,7 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     break;
   }
   }
+  remove_notch(s, p);
   // Overlapping particles (centres closer than 1e-6 of the smaller radius) are an input error.
   double rmax = 0;
   for (double r : p.radius)

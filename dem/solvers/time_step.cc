@@ -18,7 +18,7 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
   std::map<std::array<double, 12>, double> cache;
   for (std::size_t k = 0; k < bonds.size(); ++k)
   {
-    if (bonds.state[k] != BondState::intact)
+    if (!is_bonded(bonds.state[k])) // a softening bond is no stiffer than intact: kept
       continue;
     const int a = bonds.a[k], b = bonds.b[k];
     eq48 = std::min(eq48, 0.22 * std::sqrt(std::min(p.mass[a], p.mass[b]) / bonds.kn[k]));

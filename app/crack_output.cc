@@ -1,0 +1,131 @@
+#include "crack_output.h"
+#include "dem/measurements/failure_measurements.h"
+#include "dem/model/groups.h"
+#include <cmath>
+#include <cstdio>
+#include <deal.II/base/data_out_base.h>
+#include <fstream>
+#include <iomanip>
+
+namespace dembridge::app
+{
+CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu)
+    : dir_(std::move(dir)), write_vtu_(write_vtu)
+{
+}
+
+void CrackOutput::update(const dem::ExplicitSolver& s)
+{
+  const auto& all = s.cracks();
+  cracks_.insert(cracks_.end(), all.begin() + long(cracks_.size()), all.end());
+}
+
+void CrackOutput::snapshot(double time, long step)
+{
+  if (!write_vtu_)
+    return;
+  using dealii::DataComponentInterpretation::component_is_part_of_vector;
+  using dealii::DataComponentInterpretation::DataComponentInterpretation;
+  const std::vector<std::string> names = {"time",       "mode", "energy", "particle_a",
+                                          "particle_b", "axis", "axis",   "axis"};
+  const std::vector<
+      std::tuple<unsigned int, unsigned int, std::string, DataComponentInterpretation>>
+      ranges = {{5, 7, "axis", component_is_part_of_vector}};
+  std::vector<dealii::DataOutBase::Patch<0, 3>> patches(cracks_.size());
+  for (std::size_t k = 0; k < cracks_.size(); ++k)
+  {
+    const auto& c = cracks_[k];
+    auto& patch = patches[k];
+    patch.vertices[0] = dealii::Point<3>(c.midpoint.x(), c.midpoint.y(), c.midpoint.z());
+    patch.patch_index = unsigned(k);
+    patch.data.reinit(unsigned(names.size()), 1);
+    const double values[] = {c.time,      double(c.mode == dem::CrackMode::shear),
+                             c.energy,    double(c.a),
+                             double(c.b), c.axis.x(),
+                             c.axis.y(),  c.axis.z()};
+    for (unsigned r = 0; r < names.size(); ++r)
+      patch.data(r, 0) = float(values[r]);
+  }
+  char name[40];
+  std::snprintf(name, sizeof name, "cracks_%06zu.vtu", files_.size());
+  std::ofstream out(dir_ / name);
+  if (!out)
+    throw std::runtime_error((dir_ / name).string() + ": cannot write");
+  dealii::DataOutBase::VtkFlags flags(time, unsigned(step), false);
+  dealii::DataOutBase::write_vtu(patches, names, ranges, flags, out);
+  files_.emplace_back(time, name);
+}
+
+void CrackOutput::finish() const
+{
+  const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
+  {
+    std::ofstream out(part);
+    if (!out)
+      throw std::runtime_error(file.string() + ": cannot write");
+    out << "time,x,y,z,axis_x,axis_y,axis_z,mode,energy,particle_a,particle_b,bond\n"
+        << std::setprecision(10);
+    for (const auto& c : cracks_)
+      out << c.time << ',' << c.midpoint.x() << ',' << c.midpoint.y() << ',' << c.midpoint.z()
+          << ',' << c.axis.x() << ',' << c.axis.y() << ',' << c.axis.z() << ','
+          << (c.mode == dem::CrackMode::shear ? "shear" : "tension") << ',' << c.energy << ','
+          << c.a << ',' << c.b << ',' << c.bond << '\n';
+    if (!out)
+      throw std::runtime_error(file.string() + ": write failed");
+  }
+  std::filesystem::rename(part, file);
+  if (write_vtu_)
+  {
+    std::ofstream out(dir_ / "cracks.pvd");
+    dealii::DataOutBase::write_pvd_record(out, files_);
+  }
+}
+
+void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
+                       const dem::ParticleStore& p, const dem::BondStore& b, int layers,
+                       int layer_axis)
+{
+  long tension = 0;
+  for (const auto& c : cracks)
+    tension += c.mode == dem::CrackMode::tension;
+  j["n_broken_bonds"] = cracks.size();
+  j["broken_bonds_tension"] = tension;
+  j["broken_bonds_shear"] = long(cracks.size()) - tension;
+  j["broken_bond_fraction"] = b.size() > 0 ? double(cracks.size()) / double(b.size()) : 0.0;
+  if (layers > 0)
+  {
+    const auto [lo, hi] = dem::reference_extent(p);
+    const dem::DamageLayers d = dem::damage_layers(p, b, lo, hi, layer_axis, layers);
+    j["damage_layers"] = {{"axis", std::string(1, "xyz"[d.axis])},
+                          {"edges", d.edges},
+                          {"n_bonds", d.bonds},
+                          {"n_broken", d.broken},
+                          {"broken_fraction", d.broken_fraction},
+                          {"localisation", d.localisation},
+                          {"band", d.band}};
+  }
+}
+
+void add_peak_stress(nlohmann::json& j, const std::vector<double>& force,
+                     const std::vector<double>& displacement, double area, double gauge_length)
+{
+  const dem::PeakLoad peak = dem::peak_of(force, displacement);
+  if (peak.index < 0 || !(area > 0) || !(gauge_length > 0))
+    return;
+  j["peak_stress"] = std::abs(peak.load) / area;
+  j["strain_at_peak"] = std::abs(peak.displacement) / gauge_length;
+  // the load at the end of the run over the peak: how far past the peak the run went
+  j["final_to_peak_load"] = peak.load != 0 ? force.back() / peak.load : 0.0;
+}
+
+void add_peak_load(nlohmann::json& j, const std::vector<double>& load,
+                   const std::vector<double>& deflection)
+{
+  const dem::PeakLoad peak = dem::peak_of(load, deflection);
+  if (peak.index < 0)
+    return;
+  j["peak_load"] = std::abs(peak.load);
+  j["deflection_at_peak"] = std::abs(peak.displacement);
+  j["final_to_peak_load"] = peak.load != 0 ? load.back() / peak.load : 0.0;
+}
+} // namespace dembridge::app

@@ -1,0 +1,59 @@
+#pragma once
+// Output of bond failures (issue 8):
+//  - cracks.csv: one row per broken bond: time (s), bond midpoint x y z (m), bond axis x y z,
+//    mode (tension | shear: which stress governed), released energy (J: the strain energy of a
+//    brittle bond, the energy a softening bond dissipated), particle ids a b and the bond index;
+//    written under a temporary name and renamed when the run completes;
+//  - cracks.pvd + cracks_NNNNNN.vtu: at every snapshot, every crack so far as a point at its bond
+//    midpoint (ParaView: Glyph with the `axis` vector), through deal.II's DataOutBase;
+//  - summary.json: n_broken_bonds, broken_bonds_tension, broken_bonds_shear, the broken-bond
+//    fraction per stress-layer slab (damage_layers) and the peak of the load history (peak_stress
+//    and strain_at_peak for uniaxial tests, peak_load for three-point bending), from
+//    dem/measurements/failure_measurements.h.
+#include "dem/bonds/bond_store.h"
+#include "dem/core/particle_store.h"
+#include "dem/solvers/explicit_solver.h"
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dembridge::app
+{
+class CrackOutput
+{
+public:
+  CrackOutput(std::filesystem::path dir, bool write_vtu);
+  /// Takes the solver's new failures (its crack log only grows); call on every record.
+  void update(const dem::ExplicitSolver& s);
+  /// Writes cracks_NNNNNN.vtu with every crack so far.
+  void snapshot(double time, long step);
+  /// Writes cracks.csv and cracks.pvd.
+  void finish() const;
+  const std::vector<dem::CrackEvent>& cracks() const { return cracks_; }
+
+private:
+  std::filesystem::path dir_;
+  bool write_vtu_;
+  std::vector<dem::CrackEvent> cracks_;
+  std::vector<std::pair<double, std::string>> files_;
+};
+
+/// summary.json: crack counts, and the broken fraction per slab when `layers` > 0 (the slabs of
+/// Measurements/stress layers over the specimen's reference extent).
+void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
+                       const dem::ParticleStore& p, const dem::BondStore& b, int layers,
+                       int layer_axis);
+
+/// summary.json: peak_stress (Pa) and strain_at_peak of a uniaxial load history (force in N,
+/// end displacement in m) over the cross-section area and gauge length: magnitudes, at the
+/// record of the largest |force|; final_to_peak_load says how far past the peak the run went.
+/// The peak is that of the recorded history: record often (Output/history interval).
+void add_peak_stress(nlohmann::json& j, const std::vector<double>& force,
+                     const std::vector<double>& displacement, double area, double gauge_length);
+
+/// summary.json: peak_load (N) and the deflection at it (magnitudes), of a bending load history.
+void add_peak_load(nlohmann::json& j, const std::vector<double>& load,
+                   const std::vector<double>& deflection);
+} // namespace dembridge::app
