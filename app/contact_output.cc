@@ -47,6 +47,7 @@ void ContactOutput::summary(nlohmann::json& j, double time) const
   j["contact_updates"] = c.contact_updates();
   j["neighbour_list_builds"] = c.list_builds();
   j["neighbour_search_seconds"] = c.search_seconds();
+  j["contact_activation_energy"] = c.activation_energy();
   for (std::size_t w = 0; w < c.walls(); ++w)
   {
     const auto& wall = c.wall(w);

@@ -236,7 +236,7 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
   const std::int32_t* first = list_.first().data();
   const std::int32_t* second = list_.second().data();
   const double mu = material_.friction;
-  double stored = 0, slip = 0, dissipation = 0;
+  double stored = 0, slip = 0, dissipation = 0, activation = 0;
   std::size_t active = 0;
 
   auto note = [&](bool wall, std::int32_t a, std::int32_t b, double delta, double force, double v_n)
@@ -282,8 +282,11 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
                           0.5 * (w[i] + w[j]).dot(n),
                           r[i] * r[j] / reach,
                           m[i] * m[j] / (m[i] + m[j])};
+    const bool was_open = kt_[k] == 0.0;
     const ContactOutput out = contact_force<Law, rolling>(*pair_law, in, mu, rolling_, dt,
                                                           {xi_[k], theta_[k], kt_[k], kr_[k]});
+    if (bond >= 0 && was_open) // a broken bond's pair, touching from the first step on: its
+      activation += out.energy - 0.5 * dt * out.power; // in the solver's time-centred form
     ++active;
     F[j] += out.force;
     F[i] -= out.force;
@@ -343,6 +346,7 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
   }
 
   slip_ += slip;
+  activation_ += activation;
   damping_work_ += 0.5 * dt * dissipation; // the half with v^{n-1/2}
   if constexpr (record)
     stored_ = stored;
@@ -415,6 +419,14 @@ void ContactForces::add_energy(EnergyBalance& e) const
   // at t_n the dashpot work counts d^n . v^{n-1/2} dt/2 but not yet the half with v^{n+1/2}
   e.contact_damping += damping_work_ - damping_lead_;
   e.wall_work += wall_work_;
+  // A bond that breaks while its spheres overlap hands its pair to a contact that starts with
+  // the stored energy U_c(delta) of that overlap: the solver has booked the bond's whole strain
+  // energy as fracture (in the leapfrog's time-centred form U_b - dt/2 dU_b/dt, the bond's force
+  // missing from step n on), but U_c of it (in the same form) was not released. It moves from
+  // fracture (the solver's running sum, hence only the part not yet moved) to the contact's stored
+  // energy.
+  e.fracture -= activation_ - activation_booked_;
+  activation_booked_ = activation_;
 }
 
 // Stability limit of the contact springs. For a spring k between bodies of inverse masses

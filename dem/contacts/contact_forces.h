@@ -15,7 +15,9 @@
 //   friction         slip of the tangential and rolling springs (tangential_spring.h);
 //   contact_damping  dashpot work d^n . (v^{n-1/2} + v^{n+1/2}) / 2 dt, as the bond dashpots;
 //   wall_work        work of the moving walls, 1/2 (F^{n-1} + F^n) . (u_w^n - u_w^{n-1}), F the
-//                    walls' force on the particles.
+//                    walls' force on the particles;
+//   fracture         less the stored energy of contacts that broken bonds hand over already
+//                    overlapping (activation_energy): that part of the bond's energy stays.
 // A wall's force (force_on_wall) is the sum of the forces the particles exert on it.
 #include "dem/contacts/contact_config.h"
 #include "dem/contacts/contact_monitor.h"
@@ -52,6 +54,9 @@ public:
   /// Force the particles exerted on wall w at the last step (N).
   const Vec3& force_on_wall(std::size_t w) const { return wall_force_[w]; }
   const ContactMonitor& monitor() const { return monitor_; }
+  /// Stored energy of the contacts that a broken bond handed over already overlapping, at their
+  /// first step (J): energy the break did not release.
+  double activation_energy() const { return activation_; }
   /// Measures the stress-strain curve between walls `lower` and `upper` (facing each other) on
   /// a specimen of cross-section `area` (m^2); InputError names Contacts/platens.
   void measure_platens(int lower, int upper, double area);
@@ -101,6 +106,8 @@ private:
 
   // energy
   double stored_ = 0, slip_ = 0, damping_work_ = 0, damping_lead_ = 0, wall_work_ = 0;
+  double activation_ = 0;
+  mutable double activation_booked_ = 0; ///< part of activation_ already moved out of fracture
 
   ContactMonitor monitor_;
   PlatenTest platens_;

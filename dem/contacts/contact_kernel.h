@@ -41,6 +41,7 @@ struct ContactOutput
   double energy;       ///< stored: normal + tangential + rolling springs, J
   double slip;         ///< energy dissipated by Coulomb slip and rolling plasticity this step, J
   double damping;      ///< dissipation rate of the dashpots, -F_d . v_rel >= 0, W
+  double power;        ///< rate at which the springs store energy, W (at v^{n-1/2})
 };
 
 /// The history of one contact (kept beside the neighbour list): the tangential spring xi (m),
@@ -78,6 +79,7 @@ inline ContactOutput contact_force(const Law& law, const ContactInput& c, double
   out.force = out.normal_force * n - r.kt * xi + damping_t;
   out.damping = -out.damping_force.dot(v_rel);
   out.energy = r.energy + 0.5 * r.kt * xi.squaredNorm();
+  out.power = -r.force * v_n + r.kt * xi.dot(v_t);
 
   const Vec3 arm_force = n.cross(out.force);
   out.torque_i = -c.arm_i * arm_force;
@@ -96,6 +98,7 @@ inline ContactOutput contact_force(const Law& law, const ContactInput& c, double
     out.torque_i += moment;
     out.torque_j -= moment;
     out.energy += 0.5 * kr * theta.squaredNorm();
+    out.power += kr * theta.dot(w_rel);
   }
   return out;
 }

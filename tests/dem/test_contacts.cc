@@ -2,10 +2,12 @@
 // restitution of the linear law, friction on an incline, rolling resistance, the tangential
 // spring under rigid rotation, the energy balance through impacts, bonded pairs, and the Verlet
 // list against an all-pairs search.
+#include "dem/bonds/bond_strength.h"
 #include "dem/bonds/bonding.h"
 #include "dem/contacts/contact_forces.h"
 #include "dem/contacts/neighbour_list.h"
 #include "dem/solvers/explicit_solver.h"
+#include "dem/solvers/time_step.h"
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -426,6 +428,45 @@ TEST(ContactBonds, NoContactAcrossAnIntactBond)
   // the contact alone acts now: F = k_n delta on each sphere
   const double delta = 2 * R - (s.p.position[1] - s.p.position[0]).norm();
   EXPECT_GT(delta, 0);
+}
+
+// A bond that breaks in compression and shear hands its overlapping pair to a contact: the
+// contact's stored energy at that moment is not released by the break, and the balance holds
+// through the break and the rebound.
+TEST(ContactBonds, BalanceWhenABondBreaksWhileItsSpheresOverlap)
+{
+  Scene s;
+  const double R = 0.01;
+  s.add(Vec3(-R, 0, 0), R, 2500, Vec3(0.25, -0.15, 0));
+  s.add(Vec3(R, 0, 0), R, 2500, Vec3(-0.25, 0.15, 0));
+  BondMaterial bm;
+  bm.youngs_modulus = 1e8;
+  add_bond(s.p, s.b, bm, 0, 1);
+  DamageConfig damage;
+  damage.law.mode = FailureMode::brittle;
+  damage.tensile_strength = 1e9; // never in tension
+  damage.shear_strength = 1e4;   // Pa: breaks after a few micrometres of shear
+  assign_bond_strengths(s.b, damage);
+  const ContactConfig m = linear(1.5e6, 0.8, 0.3);
+  const double dt = 0.1 * std::min(ContactForces(m, {}).critical_time_step(s.p),
+                                   estimate_critical_time_step(s.p, s.b).critical());
+  s.start(m, {}, dt);
+  double worst = 0, largest = 0;
+  for (int n = 0;
+       n < 20000 && (s.solver->n_broken_bonds() == 0 || s.contacts->active_contacts() > 0); ++n)
+  {
+    s.solver->step(true);
+    largest = std::max(largest, s.solver->energy().largest());
+    worst = std::max(worst, s.solver->energy().error());
+  }
+  const auto& e = s.solver->energy();
+  std::printf("bond broken under compression: contact took over %.4g J of the bond's energy, "
+              "fracture %.4g J, balance %.2e\n",
+              s.contacts->activation_energy(), e.fracture, worst / largest);
+  ASSERT_EQ(s.solver->n_broken_bonds(), 1);
+  EXPECT_GT(s.contacts->activation_energy(), 0.01 * e.initial); // it broke while overlapping
+  EXPECT_EQ(s.contacts->active_contacts(), 0u);                 // and the spheres parted
+  EXPECT_LT(worst / largest, 0.01);
 }
 
 // The Verlet list holds exactly the pairs an all-pairs search finds within the skin, after
