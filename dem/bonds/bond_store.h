@@ -44,7 +44,7 @@ struct BondStore
   std::vector<double> tensile_strength; ///< sigma_t, Pa
   std::vector<double> shear_strength;   ///< tau_c (constant) or cohesion c (Mohr-Coulomb), Pa
   std::vector<double> damage;           ///< D in [0, 1] (1 once broken)
-  std::vector<double> kappa_max;        ///< largest failure index reached (softening)
+  std::vector<double> kappa_max;        ///< largest failure index above 1 reached (softening)
   std::vector<double> kappa_ultimate;   ///< kappa_u, fixed when softening starts (eq. 4)
   std::vector<double> dissipated;       ///< fracture energy booked for the bond so far, J
   std::vector<CrackMode> failure_mode;  ///< mode that governed when softening started

@@ -18,6 +18,33 @@
 
 namespace dembridge::dem
 {
+/// The section's loads in the form the failure check reads them, free of divisions: with
+/// R/I = 4 / (A R) and R/J = 2 / (A R),
+///   sigma A R = R F_n + 4 beta |M_b|,   tau A R = R |F_s| + 2 beta |M_t|      (N·m)
+/// so sigma >= sigma_t  <=>  tension >= sigma_t A R, and likewise for tau.
+struct SectionLoads
+{
+  double normal_force = 0; ///< F_n, N (tension positive)
+  double tension = 0;      ///< sigma A R, N·m
+  double shear = 0;        ///< tau A R, N·m
+};
+
+inline SectionLoads section_loads(const double* F, const double* M, const double* e, double radius,
+                                  double moment_factor)
+{
+  const double fe = F[0] * e[0] + F[1] * e[1] + F[2] * e[2];
+  const double me = M[0] * e[0] + M[1] * e[1] + M[2] * e[2];
+  const double fsx = F[0] - fe * e[0], fsy = F[1] - fe * e[1], fsz = F[2] - fe * e[2];
+  const double mbx = M[0] - me * e[0], mby = M[1] - me * e[1], mbz = M[2] - me * e[2];
+  SectionLoads l;
+  l.normal_force = -fe;
+  l.tension =
+      radius * l.normal_force + 4.0 * moment_factor * std::sqrt(mbx * mbx + mby * mby + mbz * mbz);
+  l.shear =
+      radius * std::sqrt(fsx * fsx + fsy * fsy + fsz * fsz) + 2.0 * moment_factor * std::abs(me);
+  return l;
+}
+
 struct BondStress
 {
   double tensile = 0;      ///< sigma, Pa (tension positive)
@@ -31,20 +58,12 @@ struct BondStress
 inline BondStress bond_stress(const double* F, const double* M, const double* e, double radius,
                               double moment_factor)
 {
-  const double area = std::numbers::pi * radius * radius;
-  const double inertia = 0.25 * area * radius * radius; // I = pi R^4 / 4
-  const double polar = 2.0 * inertia;                   // J = pi R^4 / 2
-  const double fe = F[0] * e[0] + F[1] * e[1] + F[2] * e[2];
-  const double me = M[0] * e[0] + M[1] * e[1] + M[2] * e[2];
-  const double fsx = F[0] - fe * e[0], fsy = F[1] - fe * e[1], fsz = F[2] - fe * e[2];
-  const double mbx = M[0] - me * e[0], mby = M[1] - me * e[1], mbz = M[2] - me * e[2];
+  const SectionLoads l = section_loads(F, M, e, radius, moment_factor);
   BondStress s;
-  s.normal_force = -fe;
-  s.area = area;
-  s.tensile = s.normal_force / area +
-              moment_factor * std::sqrt(mbx * mbx + mby * mby + mbz * mbz) * radius / inertia;
-  s.shear = std::sqrt(fsx * fsx + fsy * fsy + fsz * fsz) / area +
-            moment_factor * std::abs(me) * radius / polar;
+  s.area = std::numbers::pi * radius * radius;
+  s.normal_force = l.normal_force;
+  s.tensile = l.tension / (s.area * radius);
+  s.shear = l.shear / (s.area * radius);
   return s;
 }
 } // namespace dembridge::dem

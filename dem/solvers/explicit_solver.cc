@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #ifdef _OPENMP
 #include <omp.h>
@@ -167,14 +168,18 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
     [[maybe_unused]] double carried = 1.0; // 1 - D
     if constexpr (failure != FailureMode::none)
     {
-      // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2).
+      // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2), its
+      // two ratios compared as sigma A R against sigma_t A R and tau A R against tau_max A R:
+      // no division on the way, the common case of a bond below its strength
       const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
       const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
-      const BondStress st = bond_stress(Fe, Me, f.e, b_.radius[k], law.moment_factor);
-      const double kappa_t = st.tensile / b_.tensile_strength[k];
-      const double kappa_s =
-          st.shear / shear_strength(law, b_.shear_strength[k], st.normal_force, st.area);
-      const double kappa = std::max(kappa_t, kappa_s); // eq. (1)
+      const double R = b_.radius[k], area = std::numbers::pi * R * R;
+      const SectionLoads loads = section_loads(Fe, Me, f.e, R, law.moment_factor);
+      const double tension_cap = b_.tensile_strength[k] * area * R;
+      const double shear_cap =
+          shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
+      // kappa_s > kappa_t (rare: read on failure only)
+      auto shear_governs = [&] { return loads.shear * tension_cap > loads.tension * shear_cap; };
       // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
       auto elastic_power = [&]
       {
@@ -197,42 +202,41 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
       };
       if constexpr (failure == FailureMode::brittle)
       {
-        if (kappa >= 1.0)
+        if (loads.tension >= tension_cap || loads.shear >= shear_cap) // kappa >= 1
         {
           // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
           const double released = f.strain_energy + 0.5 * dt * elastic_power();
           fracture += released;
           b_.dissipated[k] = released;
-          fail(released, kappa_s > kappa_t ? CrackMode::shear : CrackMode::tension);
+          fail(released, shear_governs() ? CrackMode::shear : CrackMode::tension);
           continue;
         }
       }
-      else if (kappa > b_.kappa_max[k])
+      else if (const double hat = std::max(1.0, b_.kappa_max[k]);
+               loads.tension > hat * tension_cap || loads.shear > hat * shear_cap)
       {
+        // kappa above 1 and above the largest so far: damage grows
+        const double kappa = std::max(loads.tension / tension_cap, loads.shear / shear_cap);
         b_.kappa_max[k] = kappa;
-        if (kappa > 1.0)
+        if (b_.state[k] == BondState::intact)
         {
-          if (b_.state[k] == BondState::intact)
-          {
-            // softening starts: kappa_u from the energy at the peak (eq. 4)
-            const bool shear = kappa_s > kappa_t;
-            const double peak_energy = f.strain_energy / (kappa * kappa);
-            const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
-            b_.kappa_ultimate[k] = std::max(1.0, gf * st.area / peak_energy);
-            b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
-            b_.state[k] = BondState::softening;
-          }
-          const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
-          const double released =
-              (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
-          fracture += released;
-          b_.dissipated[k] += released;
-          b_.damage[k] = D;
-          if (D >= 1.0)
-          {
-            fail(b_.dissipated[k], b_.failure_mode[k]);
-            continue;
-          }
+          // softening starts: kappa_u from the energy at the peak (eq. 4)
+          const double peak_energy = f.strain_energy / (kappa * kappa);
+          const bool shear = shear_governs();
+          const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
+          b_.kappa_ultimate[k] = std::max(1.0, gf * area / peak_energy);
+          b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
+          b_.state[k] = BondState::softening;
+        }
+        const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
+        const double released = (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
+        fracture += released;
+        b_.dissipated[k] += released;
+        b_.damage[k] = D;
+        if (D >= 1.0)
+        {
+          fail(b_.dissipated[k], b_.failure_mode[k]);
+          continue;
         }
       }
       carried = 1.0 - b_.damage[k];

@@ -470,3 +470,64 @@ TEST(BondStrength, RefusesBadInput)
   soft.law.fracture_energy_II = 0.99 * need_II;
   expect(soft, "Damage/fracture energy mode II");
 }
+
+// Threads: the bond loop with failure, run on two threads (bonds partitioned into slabs, failures
+// logged per range and drained in particle-id order), breaks the same bonds in the same order as
+// one thread, with the same energies to round-off: an HCP bar pulled apart along x.
+TEST(BondFailureThreads, TwoThreadsBreakTheSameBonds)
+{
+  struct Bar
+  {
+    ParticleStore p;
+    BondStore b;
+    std::vector<Group> groups;
+    std::vector<Load> loads;
+    Bar()
+    {
+      ParticleSource src;
+      src.kind = ParticleSource::Kind::hcp;
+      src.radius = 5e-3;
+      src.box_size = Vec3(0.1, 0.03, 0.03);
+      generate_particles(src, p);
+      BondMaterial mat;
+      mat.youngs_modulus = 4e9;
+      form_bonds(p, b, mat, 1.0);
+      DamageConfig d = brittle(1e6, 2e6);
+      d.scatter = StrengthScatter::normal;
+      d.scatter_deviation = 0.3;
+      assign_bond_strengths(b, d);
+      Group left{"left", {}}, right{"right", {}};
+      for (std::size_t i = 0; i < p.size(); ++i)
+        (p.position[i].x() < 0.01 ? left : right).members.push_back(int(i));
+      std::erase_if(right.members, [&](int i) { return p.position[i].x() < 0.09; });
+      groups = {left, right};
+      loads.push_back({.name = "hold", .group = 0, .kind = LoadKind::velocity, .components = 1});
+      loads.push_back({.name = "pull",
+                       .group = 1,
+                       .kind = LoadKind::velocity,
+                       .value = Vec3(0.05, 0, 0),
+                       .components = 1});
+    }
+  };
+  Bar one, two;
+  const double dt = 0.5 * estimate_critical_time_step(one.p, one.b).critical();
+  ExplicitSolver s1(one.p, one.b, one.groups, {}, one.loads, {dt, 0.3, 1});
+  ExplicitSolver s2(two.p, two.b, two.groups, {}, two.loads, {dt, 0.3, 2});
+  for (int n = 0; n < 600; ++n)
+  {
+    s1.step(n % 100 == 0);
+    s2.step(n % 100 == 0);
+  }
+  ASSERT_GE(s1.n_broken_bonds(), 10);
+  ASSERT_EQ(s1.n_broken_bonds(), s2.n_broken_bonds());
+  for (long k = 0; k < s1.n_broken_bonds(); ++k)
+  {
+    const auto &c1 = s1.cracks()[k], &c2 = s2.cracks()[k];
+    EXPECT_EQ(std::pair(c1.a, c1.b), std::pair(c2.a, c2.b)) << "crack " << k;
+    EXPECT_EQ(c1.time, c2.time) << "crack " << k;
+    EXPECT_NEAR(c1.energy, c2.energy, 1e-9 * c1.energy) << "crack " << k;
+  }
+  EXPECT_NEAR(s1.energy().fracture, s2.energy().fracture, 1e-9 * s1.energy().fracture);
+  for (std::size_t i = 0; i < one.p.size(); ++i)
+    EXPECT_EQ(one.p.coordination[i], two.p.coordination[i]);
+}
