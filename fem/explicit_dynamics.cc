@@ -65,9 +65,9 @@ void ExplicitDynamics::setup()
     make_grid();
   setup_system();
   assemble_system(/*condense=*/false);
-  for (auto* v :
-       {&mass, &inverse_mass, &row_sums, &u_owned, &velocity_half, &velocity_trial, &internal_force,
-        &applied_force, &step_force, &outside_force, &u_previous, &velocity_previous})
+  for (auto* v : {&mass, &mass_unweighted, &inverse_mass, &row_sums, &u_owned, &velocity_half,
+                  &velocity_trial, &internal_force, &applied_force, &step_force, &outside_force,
+                  &u_previous, &velocity_previous})
     v->reinit(locally_owned_dofs, mpi_communicator);
   for (const auto& line : constraints.get_lines())
     has_hanging_nodes = has_hanging_nodes || !line.entries.empty();
@@ -87,12 +87,13 @@ void ExplicitDynamics::assemble_lumped_mass()
                         update_values | update_quadrature_points | update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   std::vector<types::global_dof_index> dofs(n);
-  Vector<double> cell_mass(n);
+  Vector<double> cell_mass(n), cell_mass_unweighted(n);
   for (const auto& cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
       fe_values.reinit(cell);
       cell_mass = 0;
+      cell_mass_unweighted = 0;
       // The weight is read a hair inside the cell: Gauss-Lobatto points lie on the cell's faces,
       // where a weight that jumps across a face (the band's edges) must come from this side.
       const Point<3> centre = cell->center();
@@ -101,13 +102,19 @@ void ExplicitDynamics::assemble_lumped_mass()
         const Point<3>& x = fe_values.quadrature_point(q);
         const double w = mass_weight ? mass_weight(x + 1e-6 * (centre - x)) : 1.0;
         for (unsigned int i = 0; i < n; ++i)
-          cell_mass(i) += w * prm.density * fe_values.shape_value(i, q) *
-                          fe_values.shape_value(i, q) * fe_values.JxW(q);
+        {
+          const double m = prm.density * fe_values.shape_value(i, q) * fe_values.shape_value(i, q) *
+                           fe_values.JxW(q);
+          cell_mass(i) += w * m;
+          cell_mass_unweighted(i) += m;
+        }
       }
       cell->get_dof_indices(dofs);
       mass.add(dofs, cell_mass);
+      mass_unweighted.add(dofs, cell_mass_unweighted);
     }
   mass.compress(VectorOperation::add);
+  mass_unweighted.compress(VectorOperation::add);
   // Fixed DoFs (and hanging nodes, which follow their masters) do not answer forces.
   for (const auto i : locally_owned_dofs)
   {

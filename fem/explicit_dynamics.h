@@ -88,6 +88,9 @@ public:
   /// Trial velocity v^ between predict() and update() (owned).
   const LA::MPI::Vector& trial_velocity() const { return velocity_trial; }
   const LA::MPI::Vector& lumped_mass() const { return mass; }
+  /// The lumped mass without the density weight (owned): the coupling shares the band's mass
+  /// between the two sides by the ratio of the two.
+  const LA::MPI::Vector& lumped_mass_unweighted() const { return mass_unweighted; }
   /// M^-1 with zeros on fixed and driven DoFs (they do not answer forces) (owned).
   const LA::MPI::Vector& inverse_lumped_mass() const { return inverse_mass; }
   /// Internal nodal forces K u_n of the last step (owned).
@@ -143,7 +146,7 @@ private:
   bool half_step_start = true;
   bool has_hanging_nodes = false;
 
-  LA::MPI::Vector mass, inverse_mass, row_sums;
+  LA::MPI::Vector mass, mass_unweighted, inverse_mass, row_sums;
   LA::MPI::Vector u_owned, velocity_half, velocity_trial, internal_force, applied_force, step_force,
       outside_force;
   bool outside_force_applied = false;

@@ -1,0 +1,96 @@
+#include "coupling/coupled_mesh.h"
+#include <algorithm>
+#include <cmath>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace dembridge::coupling
+{
+using namespace dealii;
+
+fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
+                                     const double band_element_size,
+                                     parallel::distributed::Triangulation<3>& tria,
+                                     std::vector<RemovedShare>* removed)
+{
+  if (!(element_size.minCoeff() > 0) || !(band_element_size > 0))
+    throw std::runtime_error("Coupling/element size: must be positive");
+  const auto& g = h.geometry();
+  const auto planes = h.band_planes();
+  const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
+  // Per axis: break points (domain ends and band planes), then equal cells in each interval.
+  std::vector<std::vector<double>> steps(3);
+  for (int d = 0; d < 3; ++d)
+  {
+    std::vector<double> points = {g.domain_lo[d], g.domain_hi[d]};
+    points.insert(points.end(), planes[d].begin(), planes[d].end());
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end(),
+                             [&](double a, double b) { return std::abs(a - b) < tol; }),
+                 points.end());
+    for (std::size_t k = 0; k + 1 < points.size(); ++k)
+    {
+      const double a = points[k], b = points[k + 1], mid = 0.5 * (a + b);
+      // band intervals lie between the two planes of one coupled face
+      bool band = false;
+      for (std::size_t p = 0; p + 1 < planes[d].size(); p += 2)
+        band = band || (mid > planes[d][p] && mid < planes[d][p + 1]);
+      const double size = band ? band_element_size : element_size[d];
+      const int n = std::max(1, int(std::lround((b - a) / size)));
+      for (int i = 0; i < n; ++i)
+        steps[d].push_back((b - a) / n);
+    }
+  }
+  Triangulation<3> box;
+  GridGenerator::subdivided_hyper_rectangle(
+      box, steps, Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
+      Point<3>(g.domain_hi[0], g.domain_hi[1], g.domain_hi[2]));
+  std::set<Triangulation<3>::active_cell_iterator> remove;
+  for (const auto& cell : box.active_cell_iterators())
+  {
+    const Point<3> c = cell->center();
+    if (h.in_particle_only(Vec3(c[0], c[1], c[2])))
+      remove.insert(cell);
+  }
+  if (removed)
+  {
+    std::map<unsigned int, double> share;
+    for (const auto& cell : remove)
+      for (const unsigned int v : cell->vertex_indices())
+        share[cell->vertex_index(v)] += cell->measure() / 8;
+    removed->clear();
+    for (const auto& [v, volume] : share)
+      removed->push_back({box.get_vertices()[v], volume});
+  }
+  Triangulation<3> cut;
+  if (remove.empty())
+    cut.copy_triangulation(box);
+  else
+    GridGenerator::create_triangulation_with_removed_cells(box, remove, cut);
+  // Boundary ids by position: outer faces 0-5 (x-min, x-max, ...), the cut faces 6.
+  for (const auto& cell : cut.active_cell_iterators())
+    for (const auto& face : cell->face_iterators())
+      if (face->at_boundary())
+      {
+        const Point<3> c = face->center();
+        types::boundary_id id = 6;
+        for (int d = 0; d < 3 && id == 6; ++d)
+        {
+          if (std::abs(c[d] - g.domain_lo[d]) < tol)
+            id = 2 * d;
+          else if (std::abs(c[d] - g.domain_hi[d]) < tol)
+            id = 2 * d + 1;
+        }
+        face->set_boundary_id(id);
+      }
+  tria.copy_triangulation(cut);
+  fem::BoundaryNames names = {{"x-min", {0, 2}}, {"x-max", {1, 2}}, {"y-min", {2, 2}},
+                              {"y-max", {3, 2}}, {"z-min", {4, 2}}, {"z-max", {5, 2}}};
+  if (!remove.empty())
+    names["particle-region"] = {6, 2};
+  return names;
+}
+} // namespace dembridge::coupling

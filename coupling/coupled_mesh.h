@@ -1,0 +1,28 @@
+#pragma once
+// The FE mesh of a coupled run: a box graded along each axis so that cell faces lie on the
+// planes of the handshake band (s = 0 and s = L, handshake.h), with element size h_band across the
+// band and h = (h_x, h_y, h_z) elsewhere (each interval between planes gets equal cells of about
+// that size), and the cells of the particle-only region removed (they would carry
+// neither mass nor stiffness: 1 - alpha = 0 there). No hanging nodes.
+// Boundary names: the outer box faces x-min ... z-max (ids 0-5, as fem/mesh.h), and
+// "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
+#include "coupling/handshake.h"
+#include "fem/mesh.h"
+#include <deal.II/distributed/tria.h>
+
+namespace dembridge::coupling
+{
+/// Volume of the removed (particle-only) cells around a vertex, an eighth of each cell: the share
+/// of a node's lumped Q1 mass that the cut took away (coupled_problem.cc shares the band's mass
+/// by it).
+struct RemovedShare
+{
+  dealii::Point<3> vertex;
+  double volume = 0; ///< m^3, sum over the removed cells at the vertex of V_cell / 8
+};
+
+fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
+                                     double band_element_size,
+                                     dealii::parallel::distributed::Triangulation<3>& tria,
+                                     std::vector<RemovedShare>* removed = nullptr);
+} // namespace dembridge::coupling

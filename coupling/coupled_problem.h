@@ -1,0 +1,196 @@
+#pragma once
+// The coupled DEM-FE problem: a bonded-particle region tied through a handshake band to a
+// deal.II elastic continuum (bridging domain method, Xiao & Belytschko 2004). Read it as a
+// tutorial program with the usual verbs:
+//   setup()                 the FE mesh with the particle-only region cut out, the continuum
+//                           with (1 - alpha)-weighted stiffness and w_M-weighted density, the
+//                           particle model with alpha-weighted bonds and w_p-weighted masses
+//                           (handshake.h, blending.h), then
+//   setup_interface()       interface particles located once in their FE cells (transfer.h),
+//   assemble_constraints()  the tie's constraint matrix and its lumped diagonal
+//                           (multipliers.h), and the common time step;
+//   step(record)            one central-difference step of both sides;
+//   output_results(dir, n)  the FE fields of the current state (the particles and bonds are
+//                           written by the caller beside them).
+//
+// One step at t_n (both sides: positions u^n / x^n, velocities v^{n-1/2}), run inside the DEM
+// solver's step through its StepContribution hooks (dem/solvers/step_contribution.h):
+//   1. DEM bond forces (alpha-weighted) and loads at t_n                    [DEM solver]
+//   2. FE forces f^n = f_ext - K_(1-alpha) u^n - c M v^{n-1/2} and the
+//      trial velocities v^_I = v^{n-1/2}_I + dt M^-1 f^n                   [predict]
+//   3. optional mass damping on the particles, -c m_p v_p^{n-1/2}; fine-scale damping of band
+//      particles, -c_fs (1 - alpha) m_p (v_p - sum_I N_I v_I)^{n-1/2} (node tying only: the
+//      part of the particle motion the FE field cannot carry)
+//   4. trial velocities of the interface particles v^_p = v_p^{n-1/2} + dt F_p / m_p,
+//      the tie residual rho = G v^_I - v^_p + g^n / dt and the tie forces q (multipliers.h)
+//   5. the particles receive q (their update is the DEM solver's), the FE nodes -G^T q; the FE
+//      side advances: v^{n+1/2}_I, u^{n+1}_I                                  [update]
+//   6. DEM velocity and position update                                     [DEM solver]
+// Both sides use the same step dt = safety * min(dt_DEM, dt_FE): dt_DEM the particle region's
+// own critical step (dem/solvers/time_step.h, unweighted: a tied particle moves with the FE
+// nodes' mass as well, so the pair is never lighter than the particle alone), dt_FE the
+// Gershgorin bound of the continuum with each node's share of the tied particles' mass added.
+//
+// Energy (J). Each side's energy is its weighted share: DEM kinetic 1/2 w_p m v^{n-1/2}.v^{n+1/2}
+// and alpha-weighted bond strain energy; FE 1/2 v^{n-1/2}.M_w v^{n+1/2} and 1/2 u.K_(1-alpha) u.
+// The tie does work q.(v^{n-1/2} + v^{n+1/2})/2 dt on the particles and the opposite on the FE
+// nodes: its total, the multiplier work, vanishes when the tie holds exactly. The balance
+//   E_DEM + E_FE + W_damping = E_0 + W_loads(DEM) + W_boundary(FE)
+// is checked with the tie counted as internal (its work not credited).
+//
+// MPI: the continuum is distributed (p4est + PETSc); the particles live on rank 0, whose DEM
+// solver drives the step, while the other ranks run the same FE phases and collectives.
+#include "coupling/blending.h"
+#include "coupling/continuum_tensor.h"
+#include "coupling/handshake.h"
+#include "coupling/multipliers.h"
+#include "coupling/transfer.h"
+#include "dem/model/model.h"
+#include "dem/solvers/explicit_solver.h"
+#include "fem/explicit_dynamics.h"
+#include <functional>
+#include <memory>
+
+namespace dembridge::coupling
+{
+/// A boundary of the FE domain moved to u = ramp(t) g(X) in the given components (the ramp is
+/// a fraction, 0 to 1).
+struct DrivenBoundary
+{
+  std::string boundary; ///< x-min ... z-max
+  fem::ComponentSet components{{true, true, true}};
+  std::function<Vec3(const Vec3&)> displacement;
+  std::function<double(double)> ramp;
+};
+
+struct CouplingSettings
+{
+  HandshakeGeometry geometry;
+  Vec3 element_size = Vec3::Constant(0.01); ///< FE cell size outside the band (per axis), m
+  double band_element_size = 0.01;          ///< FE cell size across the band, m
+  Voigt6x6 tensor{};                        ///< the continuum's stiffness (Pa)
+  Tying tying = Tying::particle;
+  ConstraintSolve solve = ConstraintSolve::exact;
+  double solve_tolerance = 1e-12;
+  unsigned int max_iterations = 200;
+  double mass_damping = 0;       ///< c (1/s), both sides: -c M v, -c m v
+  double fine_scale_damping = 0; ///< c_fs (1/s), band particles (node tying)
+  double time_step_safety = 0.8; ///< dt = safety * min(dt_DEM, dt_FE)
+  double time_step = 0;          ///< s; 0: automatic
+  bool check_time_step = true;   ///< refuse a given step above the estimate
+  std::vector<DrivenBoundary> driven;
+};
+
+class CoupledProblem
+{
+public:
+  /// @p fe_parameters: the continuum (material, density, boundary conditions, loads; its mesh
+  /// section is not used); @p dem_case: the particles, bonds, groups and loads. The continuum's
+  /// material is replaced by settings.tensor.
+  CoupledProblem(const CouplingSettings& settings, const fem::Parameters& fe_parameters,
+                 const dem::CaseConfig& dem_case, MPI_Comm comm);
+  ~CoupledProblem();
+
+  void setup();
+  void setup_interface();
+  void assemble_constraints();
+  /// One coupled step (collective). With record = true the energies are refreshed.
+  void step(bool record);
+  /// FE fields of the current state; returns the .pvtu name (relative to @p dir).
+  std::string output_results(const std::filesystem::path& dir, unsigned int cycle);
+
+  /// Initial state of both sides from the same fields of the reference position:
+  /// u(X) and the velocity v(X) (read as v^{-1/2}). Call after setup().
+  void set_initial_state(const std::function<Vec3(const Vec3&)>& u,
+                         const std::function<Vec3(const Vec3&)>& v);
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double time_step() const { return dt_; }
+  double particle_time_step() const { return dt_particles_; } ///< the particle region's own
+  double fe_time_step() const { return dt_fe_; }              ///< FE bound with tied masses
+
+  const Handshake& handshake() const { return *handshake_; }
+  /// The particle model (rank 0; empty elsewhere), blended.
+  dem::Model& model() { return model_; }
+  const ParticleBlending& blending() const { return blending_; }
+  fem::ExplicitDynamics& continuum() { return *fe_; }
+  const dem::ExplicitSolver* particle_solver() const { return solver_.get(); }
+  const PointTransfer& transfer() const { return transfer_; }
+  std::size_t n_particles() const { return n_particles_; }
+  std::size_t n_interface_particles() const { return transfer_.n_points(); }
+
+  /// Energies at the last record step (every rank holds the same values).
+  struct Energies
+  {
+    double dem_kinetic = 0, dem_strain = 0, dem_damping = 0, dem_external = 0,
+           dem_other = 0; ///< contacts, friction, fracture
+    double fe_kinetic = 0, fe_strain = 0, fe_damping = 0, fe_boundary_work = 0;
+    double multiplier_work_particles = 0; ///< work of the tie forces on the particles
+    double multiplier_work_fe = 0;        ///< ... on the FE nodes
+    double initial = 0;                   ///< E_DEM + E_FE at t = 0
+    double dem_total() const { return dem_kinetic + dem_strain + dem_other; }
+    double fe_total() const { return fe_kinetic + fe_strain; }
+    double multiplier_work() const { return multiplier_work_particles + multiplier_work_fe; }
+    /// |E_DEM + E_FE + W_damping - E_0 - W_loads - W_boundary| / largest term.
+    double balance_error() const;
+  };
+  const Energies& energies() const { return energy_; }
+  /// Largest |g| = |sum_I N_I u_I - u_p| over the interface at the last record step (m).
+  double max_tie_gap() const { return max_gap_; }
+  /// Tie forces q on the interface particles of the last step (N, 3 per particle, every rank).
+  const std::vector<double>& tie_forces() const { return q_; }
+  /// The interface particles' indices in the particle store (rank 0).
+  const std::vector<int>& interface_particles() const { return interface_; }
+  /// CG iterations of the last multiplier solve.
+  unsigned int last_solve_iterations() const { return last_iterations_; }
+  /// Wall seconds spent in the coupling (FE side, transfers, multipliers) and in the particles.
+  double coupling_seconds() const { return coupling_seconds_; }
+
+private:
+  class Tie;
+  friend class Tie;
+  void tie_forces(dem::ParticleStore& p, double dt, bool record);
+  void tie_after_update(const dem::ParticleStore& p, double dt, bool record);
+  void refresh_energies(bool record);
+  void compute_time_step();
+
+  CouplingSettings settings_;
+  fem::Parameters fe_prm_;
+  dem::CaseConfig dem_case_;
+  MPI_Comm comm_;
+  bool root_ = true;
+
+  std::unique_ptr<Handshake> handshake_;
+  std::unique_ptr<fem::ExplicitDynamics> fe_;
+  dem::Model model_;
+  std::vector<int> interface_; ///< the band particles (rank 0)
+  ParticleBlending blending_;
+  PointTransfer transfer_;
+  MultiplierSolver multipliers_;
+  std::unique_ptr<Tie> tie_;
+  std::unique_ptr<dem::ExplicitSolver> solver_;
+  dem::ParticleStore empty_particles_;
+  std::size_t n_particles_ = 0;
+
+  double dt_ = 0, dt_particles_ = 0, dt_fe_ = 0;
+  double time_ = 0;
+  long steps_ = 0;
+
+  // Per-step work arrays (sized once in assemble_constraints()).
+  std::vector<double> v_trial_p_; ///< trial velocities of the interface particles
+  std::vector<double> gap_;       ///< g^n per interface particle
+  std::vector<double> rho_, q_;   ///< residual and tie forces
+  std::vector<double> slots_, points_, slots_force_;
+  std::vector<double> v_before_p_;                  ///< v^{n-1/2} of the interface particles
+  std::vector<dem::Vec3> damping_force_, v_before_; ///< all particles (mass damping)
+  fem::LA::MPI::Vector fe_force_;
+  std::vector<double> alpha_p_; ///< alpha at each interface particle
+
+  Energies energy_;
+  double work_q_particles_ = 0, damping_particles_ = 0;
+  double max_gap_ = 0;
+  unsigned int last_iterations_ = 0;
+  double coupling_seconds_ = 0;
+};
+} // namespace dembridge::coupling

@@ -1,0 +1,252 @@
+#include "coupling/transfer.h"
+
+#include <deal.II/base/mpi_remote_point_evaluation.h>
+#include <deal.II/fe/fe_q.h>
+
+#include <petscvec.h>
+
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace dembridge::coupling
+{
+using namespace dealii;
+
+namespace
+{
+/// Read or write access to the local form (owned entries, then ghosts) of a PETSc vector.
+class LocalForm
+{
+public:
+  explicit LocalForm(const fem::LA::MPI::Vector& v) : vec(static_cast<const Vec&>(v))
+  {
+    VecGhostGetLocalForm(vec, &local);
+    const PetscErrorCode ierr = VecGetArray(local ? local : vec, &values);
+    AssertThrow(ierr == 0, ExcPETScError(ierr));
+  }
+  ~LocalForm()
+  {
+    VecRestoreArray(local ? local : vec, &values);
+    if (local)
+      VecGhostRestoreLocalForm(vec, &local);
+  }
+  LocalForm(const LocalForm&) = delete;
+  LocalForm& operator=(const LocalForm&) = delete;
+  double& operator[](const std::size_t i) { return values[i]; }
+  std::size_t size() const
+  {
+    PetscInt n = 0;
+    VecGetLocalSize(local ? local : vec, &n);
+    return std::size_t(n);
+  }
+
+private:
+  Vec vec, local = nullptr;
+  PetscScalar* values = nullptr;
+};
+} // namespace
+
+void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
+                           const std::string& where)
+{
+  comm_ = fe.communicator();
+  parallel_ = Utilities::MPI::n_mpi_processes(comm_) > 1;
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
+  if (rank != 0 && !points.empty())
+    throw std::runtime_error(where + ": interface points must be given on rank 0");
+  n_points_ = Utilities::MPI::broadcast(comm_, points.size(), 0);
+
+  std::vector<Point<3>> at;
+  for (const auto& x : points)
+    at.emplace_back(x[0], x[1], x[2]);
+  Utilities::MPI::RemotePointEvaluation<3> locator(1e-6, /*enforce_unique_mapping=*/true);
+  locator.reinit(at, fe.get_triangulation(), fe.get_mapping());
+  // The first point outside the mesh (rank 0 holds the points).
+  long missing = -1;
+  if (rank == 0)
+    for (std::size_t p = 0; p < at.size() && missing < 0; ++p)
+      if (!locator.point_found(p))
+        missing = long(p);
+  missing = Utilities::MPI::broadcast(comm_, missing, 0);
+  if (missing >= 0)
+  {
+    const auto x = Utilities::MPI::broadcast(comm_, rank == 0 ? at[missing] : Point<3>(), 0);
+    std::ostringstream s;
+    s << where << ": the interface point (" << x[0] << ", " << x[1] << ", " << x[2]
+      << ") lies outside the FE mesh";
+    throw std::runtime_error(s.str());
+  }
+
+  // Which point each of this rank's (cell, reference point) pairs is: send the point indices
+  // along the same route the values take.
+  std::vector<double> index(at.size());
+  for (std::size_t p = 0; p < at.size(); ++p)
+    index[p] = double(p);
+  std::vector<double> buffer;
+  const auto& dof_handler = fe.get_dof_handler();
+  const auto& fe_system = fe.get_fe();
+  const auto& base = fe_system.base_element(0);
+  const unsigned int n_base = base.n_dofs_per_cell();
+  std::map<types::global_dof_index, unsigned int> slot_of; // x-DoF of a node -> slot
+  std::vector<std::vector<std::pair<unsigned int, double>>> rows(n_points_);
+  std::vector<types::global_dof_index> slot_dofs; // 3 per slot
+  std::vector<types::global_dof_index> cell_dofs(fe_system.n_dofs_per_cell());
+  locator.process_and_evaluate<double>(
+      index, buffer,
+      [&](const ArrayView<const double>& values,
+          const Utilities::MPI::RemotePointEvaluation<3>::CellData& cell_data)
+      {
+        for (unsigned int c = 0; c < cell_data.cells.size(); ++c)
+        {
+          const typename DoFHandler<3>::active_cell_iterator cell(
+              &fe.get_triangulation(), cell_data.cells[c].first, cell_data.cells[c].second,
+              &dof_handler);
+          cell->get_dof_indices(cell_dofs);
+          for (unsigned int q = cell_data.reference_point_ptrs[c];
+               q < cell_data.reference_point_ptrs[c + 1]; ++q)
+          {
+            const auto p = static_cast<std::size_t>(values[q] + 0.5);
+            const Point<3>& xi = cell_data.reference_point_values[q];
+            for (unsigned int b = 0; b < n_base; ++b)
+            {
+              const double N = base.shape_value(b, xi);
+              if (std::abs(N) < 1e-14)
+                continue;
+              const auto dof_x = cell_dofs[fe_system.component_to_system_index(0, b)];
+              auto [it, fresh] = slot_of.emplace(dof_x, unsigned(slot_of.size()));
+              if (fresh)
+              {
+                for (unsigned int d = 0; d < 3; ++d)
+                  slot_dofs.push_back(cell_dofs[fe_system.component_to_system_index(d, b)]);
+                slot_point_.push_back(fe.get_mapping().transform_unit_to_real_cell(
+                    cell, base.get_unit_support_points()[b]));
+              }
+              rows[p].emplace_back(it->second, N);
+            }
+          }
+        }
+      });
+
+  row_ptr_.assign(1, 0);
+  row_slot_.clear();
+  row_value_.clear();
+  for (const auto& row : rows)
+  {
+    for (const auto& [slot, N] : row)
+      row_slot_.push_back(slot), row_value_.push_back(N);
+    row_ptr_.push_back(unsigned(row_slot_.size()));
+  }
+
+  // Local-form positions of the slot DoFs.
+  ghosted_.reinit(fe.owned_dofs(), fe.relevant_dofs(), comm_);
+  const IndexSet& owned = fe.owned_dofs();
+  const auto first = owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
+  IndexSet ghosts = fe.relevant_dofs(); // the ghosts in PETSc's order (sorted)
+  ghosts.subtract_set(owned);
+  slot_local_.clear();
+  for (const auto dof : slot_dofs)
+  {
+    if (owned.is_element(dof))
+      slot_local_.push_back(unsigned(dof - first));
+    else if (parallel_ && ghosts.is_element(dof))
+      slot_local_.push_back(unsigned(owned.n_elements() + ghosts.index_within_set(dof)));
+    else
+      throw std::runtime_error(where + ": an interface node is neither owned nor a ghost");
+  }
+}
+
+void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots) const
+{
+  slots.resize(slot_local_.size());
+  if (parallel_)
+  {
+    ghosted_ = x; // copies the owned part and updates the ghosts
+    LocalForm a(ghosted_);
+    for (std::size_t k = 0; k < slot_local_.size(); ++k)
+      slots[k] = a[slot_local_[k]];
+  }
+  else
+  {
+    LocalForm a(x);
+    for (std::size_t k = 0; k < slot_local_.size(); ++k)
+      slots[k] = a[slot_local_[k]];
+  }
+}
+
+void PointTransfer::scatter_add(const std::vector<double>& slots, fem::LA::MPI::Vector& f) const
+{
+  if (!parallel_)
+  {
+    LocalForm a(f);
+    for (std::size_t k = 0; k < slot_local_.size(); ++k)
+      a[slot_local_[k]] += slots[k];
+    return;
+  }
+  {
+    LocalForm w(ghosted_);
+    for (std::size_t i = 0; i < w.size(); ++i)
+      w[i] = 0;
+    for (std::size_t k = 0; k < slot_local_.size(); ++k)
+      w[slot_local_[k]] += slots[k];
+  }
+  const Vec v = static_cast<const Vec&>(ghosted_);
+  VecGhostUpdateBegin(v, ADD_VALUES, SCATTER_REVERSE);
+  VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE);
+  LocalForm w(ghosted_), a(f);
+  const std::size_t n = fem::LA::MPI::Vector::size_type(f.locally_owned_size());
+  for (std::size_t i = 0; i < n; ++i)
+    a[i] += w[i];
+}
+
+void PointTransfer::assemble(std::vector<double>& slots) const
+{
+  if (!parallel_)
+    return;
+  {
+    LocalForm w(ghosted_);
+    for (std::size_t i = 0; i < w.size(); ++i)
+      w[i] = 0;
+    for (std::size_t k = 0; k < slot_local_.size(); ++k)
+      w[slot_local_[k]] += slots[k];
+  }
+  const Vec v = static_cast<const Vec&>(ghosted_);
+  VecGhostUpdateBegin(v, ADD_VALUES, SCATTER_REVERSE);
+  VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE);
+  VecGhostUpdateBegin(v, INSERT_VALUES, SCATTER_FORWARD);
+  VecGhostUpdateEnd(v, INSERT_VALUES, SCATTER_FORWARD);
+  LocalForm w(ghosted_);
+  for (std::size_t k = 0; k < slot_local_.size(); ++k)
+    slots[k] = w[slot_local_[k]];
+}
+
+void PointTransfer::interpolate(const std::vector<double>& slots, std::vector<double>& points) const
+{
+  points.assign(3 * n_points_, 0.0);
+  for (std::size_t p = 0; p < n_points_; ++p)
+    for (unsigned int k = row_ptr_[p]; k < row_ptr_[p + 1]; ++k)
+    {
+      const double N = row_value_[k];
+      const double* s = &slots[3 * row_slot_[k]];
+      points[3 * p] += N * s[0];
+      points[3 * p + 1] += N * s[1];
+      points[3 * p + 2] += N * s[2];
+    }
+  if (parallel_)
+    MPI_Allreduce(MPI_IN_PLACE, points.data(), int(points.size()), MPI_DOUBLE, MPI_SUM, comm_);
+}
+
+void PointTransfer::spread(const std::vector<double>& points, std::vector<double>& slots) const
+{
+  slots.assign(slot_local_.size(), 0.0);
+  for (std::size_t p = 0; p < n_points_; ++p)
+    for (unsigned int k = row_ptr_[p]; k < row_ptr_[p + 1]; ++k)
+    {
+      const double N = row_value_[k];
+      double* s = &slots[3 * row_slot_[k]];
+      s[0] += N * points[3 * p];
+      s[1] += N * points[3 * p + 1];
+      s[2] += N * points[3 * p + 2];
+    }
+}
+} // namespace dembridge::coupling

@@ -1,0 +1,68 @@
+#pragma once
+// Transfer between the FE nodes and a fixed set of points (the interface particles' reference
+// centres X_p), per displacement component c:
+//   interpolation  (G x)_{p,c} = sum_I N_I(xi_p) x_{I,c}     the FE field at the point
+//   spreading      (G^T y)_{I,c} = sum_p N_I(xi_p) y_{p,c}   point forces to nodal forces
+// xi_p are the reference coordinates of X_p in the FE cell that holds it, found once at setup:
+// Utilities::MPI::RemotePointEvaluation locates every point in the distributed mesh and gives
+// it one owning rank (a point on a face shared by cells of two ranks goes to one of them). Each
+// rank keeps the rows of its points (cell, DoFs, shape values N_I(xi_p)) as a small sparse
+// matrix over "slots", the nodes its rows touch, and applies it with plain loops; the point
+// values are exchanged with one MPI_Allreduce per interpolation, so every rank holds all point
+// values (the particle side lives on rank 0; the multiplier solve runs redundantly on every
+// rank). RemotePointEvaluation's own per-call exchange allocates buffers on every call, which a
+// loop that runs every time step must not do; the precomputed rows do not.
+#include "dem/core/types.h"
+#include "fem/explicit_dynamics.h"
+#include <string>
+#include <vector>
+
+namespace dembridge::coupling
+{
+class PointTransfer
+{
+public:
+  /// Locates @p points (given on rank 0; other ranks pass none) in @p fe's mesh (collective).
+  /// Throws std::runtime_error "<where>: ..." naming the first point that lies outside it.
+  void reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
+              const std::string& where);
+
+  std::size_t n_points() const { return n_points_; }
+  /// Nodes touched by this rank's points; slot vectors hold 3 values per slot.
+  std::size_t n_slots() const { return slot_local_.size() / 3; }
+
+  /// Slot values of an owned FE vector (collective: ghost exchange under MPI).
+  void gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots) const;
+  /// f += the slot values, summed over the ranks that share a node (collective).
+  void scatter_add(const std::vector<double>& slots, fem::LA::MPI::Vector& f) const;
+  /// Sums slot values over the ranks that share a node, so each rank holds the assembled
+  /// value (collective; nothing to do on one rank).
+  void assemble(std::vector<double>& slots) const;
+  /// points = G slots, 3 values per point, on every rank (collective).
+  void interpolate(const std::vector<double>& slots, std::vector<double>& points) const;
+  /// slots = G^T points on this rank's rows (not assembled; see assemble()).
+  void spread(const std::vector<double>& points, std::vector<double>& slots) const;
+
+  /// Shape values of the rows: for point p, entries [row_ptr[p], row_ptr[p+1]) of (slot, N);
+  /// empty rows for points owned by other ranks.
+  const std::vector<unsigned int>& row_pointers() const { return row_ptr_; }
+  const std::vector<unsigned int>& row_slots() const { return row_slot_; }
+  const std::vector<double>& row_values() const { return row_value_; }
+  /// Support point of each slot (node position).
+  const std::vector<dealii::Point<3>>& slot_points() const { return slot_point_; }
+  MPI_Comm communicator() const { return comm_; }
+  bool parallel() const { return parallel_; }
+
+private:
+  MPI_Comm comm_ = MPI_COMM_SELF;
+  bool parallel_ = false;
+  std::size_t n_points_ = 0;
+  std::vector<unsigned int> row_ptr_, row_slot_;
+  std::vector<double> row_value_;
+  /// per slot and component: the index into this rank's local form of a ghosted FE vector
+  /// (owned entries first, then the ghosts in the order of the ghost IndexSet)
+  std::vector<unsigned int> slot_local_;
+  std::vector<dealii::Point<3>> slot_point_;
+  mutable fem::LA::MPI::Vector ghosted_; ///< work vector with the FE's ghost layout (MPI)
+};
+} // namespace dembridge::coupling

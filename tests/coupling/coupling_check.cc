@@ -1,0 +1,406 @@
+// Physics checks of the coupled DEM-FE mode (coupling/): one check per ctest, chosen by the
+// first argument. Each prints its numbers and the reference with the tolerance, and exits 1 if a
+// check fails.
+//   wave        a longitudinal pulse through the handshake band of a bar, both directions
+//   ... (see main)
+#include "coupling/coupled_problem.h"
+#include "coupling/measurements.h"
+#include "dem/bonds/bond_model.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <numbers>
+#include <string>
+
+using namespace dembridge;
+using coupling::Vec3;
+
+namespace
+{
+int failures = 0;
+
+void check(const bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "PASS" : "FAIL", what.c_str());
+  failures += !ok;
+}
+
+// ------------------------------------------------------------------------------------------
+// A bar of simple cubic PBM lattice (n x n particles across) along x: continuum on
+// [0, fe_length], particles on [fe_length, fe_length + particle_length], the band inside the
+// particle region.
+struct Bar
+{
+  double radius = 0.005;
+  int across = 1;         ///< particles across the bar (y and z)
+  double fe_length = 0.8; ///< m
+  double particle_length = 0.8;
+  double band_width = 0.03;   ///< m
+  double element_size = 0.01; ///< along x, m
+  double density = 2500;      ///< kg/m^3 (of the continuum; the lattice scales its spheres)
+  coupling::Tying tying = coupling::Tying::particle;
+  coupling::ConstraintSolve solve = coupling::ConstraintSolve::exact;
+  double fine_scale_damping = 0;
+  double weight_floor = 0.1;
+
+  double spacing() const { return 2 * radius; }
+  double width() const { return across * spacing(); }
+
+  dem::BondMaterial material() const
+  {
+    dem::BondMaterial m;
+    m.model = dem::BondModel::parallel_bond;
+    m.youngs_modulus = 4e9;
+    m.poisson_ratio = 0.3;
+    m.stiffness_ratio = 4.2;
+    return m;
+  }
+  dem::BondStiffness bond() const
+  {
+    return dem::bond_stiffness(material(), spacing(), radius, radius);
+  }
+  /// Long-wave speed sqrt(C11 / rho) of the lattice and its continuum.
+  double wave_speed() const { return std::sqrt(bond().kn / spacing() / density); }
+
+  std::unique_ptr<coupling::CoupledProblem> make(MPI_Comm comm) const
+  {
+    dem::CaseConfig c;
+    c.particles.kind = dem::ParticleSource::Kind::cubic;
+    c.particles.radius = radius;
+    c.particles.density = density;
+    c.particles.scale_density_by_porosity = true; // m = rho d^3: the lattice weighs the continuum
+    c.particles.box_size = Vec3(particle_length, width(), width());
+    c.particles.origin = Vec3(fe_length, 0, 0);
+    c.bonds.material = material();
+    c.run.threads = 1;
+    fem::Parameters fe;
+    fe.density = density;
+    fe.degree = 1;
+    coupling::CouplingSettings s;
+    s.geometry.domain_lo = Vec3::Zero();
+    s.geometry.domain_hi = Vec3(fe_length + particle_length, width(), width());
+    s.geometry.particle_lo = Vec3(fe_length, 0, 0);
+    s.geometry.particle_hi = s.geometry.domain_hi;
+    s.geometry.band_width = band_width;
+    s.geometry.weight_floor = weight_floor;
+    s.geometry.particle_radius = radius;
+    s.element_size = Vec3(element_size, spacing(), spacing());
+    s.band_element_size = element_size;
+    const auto k = bond();
+    s.tensor = coupling::simple_cubic_tensor(k.kn, k.ks, spacing());
+    s.tying = tying;
+    s.solve = solve;
+    s.fine_scale_damping = fine_scale_damping;
+    auto problem = std::make_unique<coupling::CoupledProblem>(s, fe, c, comm);
+    problem->setup();
+    return problem;
+  }
+};
+
+struct WaveResult
+{
+  double reflected = 0, transmitted = 0, balance = 0, band = 0;
+};
+
+/// A pulse of dominant wavelength @p wavelength from one side through the band: the energy left
+/// on the incident side once the pulse has passed (reflected) and on the other side
+/// (transmitted), relative to the initial energy; the largest |E(t) - E_0| / E_0 on the way.
+WaveResult wave_through_band(const Bar& bar, const double wavelength, const bool from_continuum,
+                             MPI_Comm comm)
+{
+  auto problem = bar.make(comm);
+  const double dt = problem->time_step();
+  const double c = bar.wave_speed();
+  const double band_lo = bar.fe_length + bar.radius, band_hi = band_lo + bar.band_width;
+  coupling::Pulse pulse;
+  pulse.wavelength = wavelength;
+  pulse.amplitude = 1e-6;
+  pulse.envelope = 1.0;
+  double distance = 0;
+  if (from_continuum)
+  {
+    pulse.centre = bar.fe_length - 4 * wavelength;
+    pulse.direction = +1;
+    pulse.speed = coupling::discrete_phase_speed(c, bar.element_size, dt, wavelength);
+    distance = band_hi + 3.5 * wavelength - pulse.centre;
+  }
+  else
+  {
+    pulse.centre = band_hi + 4 * wavelength;
+    pulse.direction = -1;
+    pulse.speed = coupling::discrete_phase_speed(c, bar.spacing(), dt, wavelength);
+    distance = pulse.centre - (band_lo - 3.5 * wavelength);
+  }
+  problem->set_initial_state([&](const Vec3& X) { return coupling::pulse_displacement(pulse, X); },
+                             [&](const Vec3& X) { return coupling::pulse_velocity(pulse, X, dt); });
+  const long steps = long(std::ceil(distance / c / dt));
+  WaveResult r;
+  double e0 = 0;
+  for (long n = 0; n <= steps; ++n)
+  {
+    const bool record = n % 10 == 0 || n == steps;
+    problem->step(record);
+    if (!record)
+      continue;
+    const auto& e = problem->energies();
+    const double total = e.dem_total() + e.fe_total();
+    if (n == 0)
+      e0 = e.initial;
+    r.balance = std::max(r.balance, std::abs(total - e0) / e0);
+  }
+  const auto& e = problem->energies();
+  r.reflected = (from_continuum ? e.fe_total() : e.dem_total()) / e0;
+  r.transmitted = (from_continuum ? e.dem_total() : e.fe_total()) / e0;
+  return r;
+}
+
+// ------------------------------------------------------------------------------------------
+void check_wave(MPI_Comm comm)
+{
+  // Matched: FE nodes on the particle planes (h = d).
+  Bar bar;
+  const double lambda = 10 * bar.spacing();
+  for (const bool from_continuum : {true, false})
+  {
+    const auto r = wave_through_band(bar, lambda, from_continuum, comm);
+    std::printf("wave %s, lambda = 10 d, h = d: reflected %.3e, transmitted %.6f, "
+                "energy balance %.3e\n",
+                from_continuum ? "continuum -> particles" : "particles -> continuum", r.reflected,
+                r.transmitted, r.balance);
+    check(r.reflected < 0.01, "reflected energy below 1 % of the incident");
+    check(std::abs(r.reflected + r.transmitted - 1) < 0.01,
+          "reflected + transmitted = 1 within 1 %");
+    check(r.balance < 0.01, "total energy conserved to 1 %");
+  }
+}
+// ------------------------------------------------------------------------------------------
+// A cube of continuum, 16 d on a side, with a simple cubic particle block of 10 d inside it
+// (box 3 d ... 13 d, particle centres on the planes 3.5 d ... 12.5 d): the band runs round all
+// six faces.
+struct Block
+{
+  double radius = 0.005;
+  double element_size = 0.01; ///< h
+  double band_width = 0.02;
+  double density = 2500;
+  double mass_damping = 0;
+
+  double spacing() const { return 2 * radius; }
+  std::unique_ptr<coupling::CoupledProblem>
+  make(MPI_Comm comm, std::vector<coupling::DrivenBoundary> driven = {}) const
+  {
+    const double d = spacing();
+    Bar bar; // the same bonds
+    bar.radius = radius;
+    dem::CaseConfig c;
+    c.particles.kind = dem::ParticleSource::Kind::cubic;
+    c.particles.radius = radius;
+    c.particles.density = density;
+    c.particles.scale_density_by_porosity = true;
+    c.particles.box_size = Vec3::Constant(10 * d);
+    c.particles.origin = Vec3::Constant(3 * d);
+    c.bonds.material = bar.material();
+    c.run.threads = 1;
+    fem::Parameters fe;
+    fe.density = density;
+    coupling::CouplingSettings s;
+    s.geometry.domain_lo = Vec3::Zero();
+    s.geometry.domain_hi = Vec3::Constant(16 * d);
+    s.geometry.particle_lo = c.particles.origin;
+    s.geometry.particle_hi = c.particles.origin + c.particles.box_size;
+    s.geometry.band_width = band_width;
+    s.geometry.particle_radius = radius;
+    s.element_size = Vec3::Constant(element_size);
+    s.band_element_size = element_size;
+    const auto k = bar.bond();
+    s.tensor = coupling::simple_cubic_tensor(k.kn, k.ks, d);
+    s.mass_damping = mass_damping;
+    s.driven = std::move(driven);
+    auto problem = std::make_unique<coupling::CoupledProblem>(s, fe, c, comm);
+    problem->setup();
+    return problem;
+  }
+};
+
+/// Largest forces after one step from a given state, over the scale of the forces a strain of
+/// 1e-4 puts on a bond (k_n 1e-4 d): bonds, net particle forces, FE internal forces, ties.
+struct Forces
+{
+  double bonds = 0, particles = 0, fe = 0, ties = 0;
+  double largest() const { return std::max({bonds, particles, fe, ties}); }
+};
+
+Forces forces_after_one_step(coupling::CoupledProblem& problem, const double scale)
+{
+  problem.step(true);
+  Forces f;
+  const auto& b = problem.model().bonds;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    f.bonds = std::max(f.bonds, std::max(b.force[k].norm(), b.moment[k].norm() / 0.005));
+  const auto& p = problem.model().particles;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    f.particles = std::max(f.particles, p.force[i].norm());
+  f.fe = problem.continuum().internal_forces().linfty_norm();
+  for (const double q : problem.tie_forces())
+    f.ties = std::max(f.ties, std::abs(q));
+  f.bonds /= scale, f.particles /= scale, f.fe /= scale, f.ties /= scale;
+  return f;
+}
+
+void check_patch_rigid(MPI_Comm comm)
+{
+  Block block;
+  const double scale = Bar().bond().kn * 1e-4 * block.spacing();
+  {
+    auto problem = block.make(comm);
+    const Vec3 t(1e-3, -2e-3, 0.5e-3);
+    problem->set_initial_state([&](const Vec3&) { return t; },
+                               [](const Vec3&) { return Vec3::Zero(); });
+    const auto f = forces_after_one_step(*problem, scale);
+    std::printf("rigid translation (1e-3 m): bonds %.2e, particles %.2e, FE %.2e, ties %.2e "
+                "(of k_n 1e-4 d)\n",
+                f.bonds, f.particles, f.fe, f.ties);
+    check(f.largest() < 1e-9, "rigid translation: every force below 1e-9 of the load scale");
+  }
+  {
+    auto problem = block.make(comm);
+    const double angle = 1e-6;
+    const Vec3 axis = Vec3(1, 2, 3).normalized(), centre = Vec3::Constant(8 * block.spacing());
+    const dem::Quat q(Eigen::AngleAxisd(angle, axis));
+    // FE: the linear rotation field, strain-free; particles: the exact rotation, orientations too
+    problem->set_initial_state([&](const Vec3& X) { return Vec3(angle * axis.cross(X - centre)); },
+                               [](const Vec3&) { return Vec3::Zero(); });
+    auto& p = problem->model().particles;
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      p.position[i] = centre + q * (p.reference_position[i] - centre);
+      p.orientation[i] = q;
+    }
+    const auto f = forces_after_one_step(*problem, scale);
+    std::printf("rigid rotation (1e-6 rad): bonds %.2e, particles %.2e, FE %.2e, ties %.2e "
+                "(of k_n 1e-4 d)\n",
+                f.bonds, f.particles, f.fe, f.ties);
+    check(f.largest() < 1e-9, "rigid rotation: every force below 1e-9 of the load scale");
+  }
+}
+
+/// Uniform strain on the outer FE faces; the particle-only region's strain after relaxation.
+double uniform_strain(const Block& block, MPI_Comm comm, Forces& ghost)
+{
+  Eigen::Matrix3d eps;
+  eps << 1.0e-4, 0.3e-4, -0.2e-4, 0.3e-4, -0.5e-4, 0.4e-4, -0.2e-4, 0.4e-4, 0.8e-4;
+  const auto u = [&](const Vec3& X) { return Vec3(eps * X); };
+  std::vector<coupling::DrivenBoundary> driven;
+  for (const char* face : {"x-min", "x-max", "y-min", "y-max", "z-min", "z-max"})
+    driven.push_back({face, {{true, true, true}}, u, [](double) { return 1.0; }});
+  Block damped = block;
+  // about critical damping of the block's lowest mode (omega ~ pi c / L)
+  const double c = Bar().wave_speed();
+  damped.mass_damping = 2 * 3.14159 * c / (16 * block.spacing());
+  auto problem = damped.make(comm, driven);
+  problem->set_initial_state(u, [](const Vec3&) { return Vec3::Zero(); });
+  const double scale = Bar().bond().kn * 1e-4 * block.spacing();
+  ghost = forces_after_one_step(*problem, scale);
+  ghost.bonds = 0; // bonds carry the strain; the ghost forces are the net ones
+  ghost.fe = 0;
+  // relax: until the kinetic energy is 1e-14 of the strain energy
+  for (long n = 1; n < 20000; ++n)
+  {
+    const bool record = n % 100 == 0;
+    problem->step(record);
+    if (record)
+    {
+      const auto& e = problem->energies();
+      if (e.dem_kinetic + e.fe_kinetic < 1e-14 * (e.dem_strain + e.fe_strain))
+        break;
+    }
+  }
+  const auto& h = problem->handshake();
+  const auto fit = coupling::fit_particle_strain(problem->model().particles, [&](const Vec3& X)
+                                                 { return h.in_particle_only(X); });
+  double err = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c2 = 0; c2 < 3; ++c2)
+      err = std::max(err, std::abs(fit[3 * r + c2] - eps(r, c2)));
+  return err / eps.cwiseAbs().maxCoeff();
+}
+
+void check_patch_strain(MPI_Comm comm)
+{
+  for (const double h : {1.0, 2.0})
+  {
+    Block block;
+    block.element_size = h * block.spacing();
+    Forces ghost;
+    const double error = uniform_strain(block, comm, ghost);
+    std::printf("uniform strain, h = %g d: ghost forces at the exact state: particles %.2e, "
+                "ties %.2e (of k_n 1e-4 d); particle-only strain error %.2e of the largest "
+                "component\n",
+                h, ghost.particles, ghost.ties, error);
+    check(error < 0.01, "uniform strain reproduced in the particle region within 1 %");
+  }
+}
+
+// Exploration (not a ctest): coupling_check wave_point LAMBDA/d H/d TYING SOLVE FLOOR [FS]
+void wave_point(MPI_Comm comm, char** argv)
+{
+  Bar bar;
+  const double lambda = std::atof(argv[2]) * bar.spacing();
+  bar.element_size = std::atof(argv[3]) * bar.spacing();
+  bar.tying = std::string(argv[4]) == "node" ? coupling::Tying::node : coupling::Tying::particle;
+  bar.solve = std::string(argv[5]) == "lumped" ? coupling::ConstraintSolve::lumped
+                                               : coupling::ConstraintSolve::exact;
+  bar.weight_floor = std::atof(argv[6]);
+  bar.fine_scale_damping = argv[7] ? std::atof(argv[7]) : 0.0;
+  bar.fe_length = std::max(0.8, 8 * lambda);
+  bar.particle_length = std::max(0.8, 8 * lambda);
+  bar.band_width = std::max(3 * bar.spacing(), 2 * bar.element_size);
+  for (const bool from_continuum : {true, false})
+  {
+    const auto r = wave_through_band(bar, lambda, from_continuum, comm);
+    std::printf("%s R %.4e T %.6f balance %.3e\n", from_continuum ? "in " : "out", r.reflected,
+                r.transmitted, r.balance);
+  }
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  if (argc < 2)
+  {
+    std::cerr << "usage: coupling_check wave|...\n";
+    return 2;
+  }
+  const std::string what = argv[1];
+  if (what == "wave_point" && argc >= 7)
+  {
+    wave_point(MPI_COMM_WORLD, argv);
+    return 0;
+  }
+  const std::map<std::string, std::function<void(MPI_Comm)>> checks = {
+      {"wave", check_wave},
+      {"patch_rigid", check_patch_rigid},
+      {"patch_strain", check_patch_strain}};
+  try
+  {
+    const auto it = checks.find(what);
+    if (it == checks.end())
+    {
+      std::cerr << "coupling_check: unknown check '" << what << "'\n";
+      return 2;
+    }
+    it->second(MPI_COMM_WORLD);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "coupling_check: error: " << e.what() << '\n';
+    return 1;
+  }
+  return failures == 0 ? 0 : 1;
+}
