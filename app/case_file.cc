@@ -1,4 +1,5 @@
 #include "case_file.h"
+#include "case_scan.h"
 #include "contact_parameters.h"
 #include "dem_parameters.h"
 #include "verify.h"
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 
 namespace dembridge::app
@@ -40,7 +42,8 @@ std::string one_line(const std::string& what)
     if (stack != std::string::npos)
       s = s.substr(0, stack);
   }
-  s = std::regex_replace(s, std::regex("[\\s-]*\\n[\\s-]*"), " ");
+  // drop deal.II's separator lines (runs of dashes), never a value's minus sign
+  s = std::regex_replace(s, std::regex("(^|\\n)[ \\t]*-{3,}[ \\t]*(?=\\n|$)"), "\n");
   s = std::regex_replace(s, std::regex("\\s+"), " ");
   const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
   return b == std::string::npos ? std::string("unknown error") : s.substr(b, e - b + 1);
@@ -85,12 +88,20 @@ void apply_override(dealii::ParameterHandler& prm, const std::string& text)
   }
 }
 
-void parse_file(dealii::ParameterHandler& prm, const std::string& file,
+/// Parses the case: .prm text from memory (@p text), .json and .xml from the file.
+void parse_file(dealii::ParameterHandler& prm, const std::string& file, const std::string& text,
                 const std::vector<std::string>& overrides, bool skip_undefined)
 {
   try
   {
-    prm.parse_input(file, "", skip_undefined, false);
+    const auto ext = std::filesystem::path(file).extension();
+    if (ext == ".json" || ext == ".xml")
+      prm.parse_input(file, "", skip_undefined, false);
+    else
+    {
+      std::istringstream in(text);
+      prm.parse_input(in, file, "", skip_undefined);
+    }
   }
   catch (const std::exception& e)
   {
@@ -109,26 +120,45 @@ std::unique_ptr<dealii::ParameterHandler> read_case(const std::string& file,
 {
   if (!std::filesystem::is_regular_file(file))
     throw std::runtime_error(file + ": no such case file");
-  {
-    std::ifstream probe(file);
-    if (!probe)
-      throw std::runtime_error(file + ": cannot read the case file");
-  }
+  std::ifstream probe(file);
+  if (!probe)
+    throw std::runtime_error(file + ": cannot read the case file");
+  const std::string text((std::istreambuf_iterator<char>(probe)),
+                         std::istreambuf_iterator<char>());
+  return read_case_text(text, file, overrides);
+}
+
+std::unique_ptr<dealii::ParameterHandler>
+read_case_text(const std::string& text, const std::string& file,
+               const std::vector<std::string>& overrides)
+{
+  // what deal.II would accept silently: an empty file, a key or subsection given twice
+  CaseScan scan;
+  const auto ext = std::filesystem::path(file).extension();
+  if (ext != ".json" && ext != ".xml")
+    scan = scan_case_text(text, file);
+  else if (text.find_first_not_of(" \t\r\n{}") == std::string::npos)
+    throw std::runtime_error(file + ": the case file sets no parameter");
   // Pass 1: only to learn the group and load names.
   dealii::ParameterHandler first;
   declare_all_parameters(first);
-  parse_file(first, file, {}, true);
+  parse_file(first, file, text, {}, true);
   for (const auto& o : overrides)
     if (o.rfind("Groups/names", 0) == 0 || o.rfind("Loads/names", 0) == 0 ||
         o.rfind("Walls/names", 0) == 0)
       apply_override(first, o);
   const auto groups = split_names(first.get({"Groups"}, "names"));
   const auto loads = split_names(first.get({"Loads"}, "names"));
+  if (!scan.subsections.empty() || scan.entries > 0)
+  {
+    check_named_subsections(scan, overrides, groups, file + ": Groups/names", "Group");
+    check_named_subsections(scan, overrides, loads, file + ": Loads/names", "Load");
+  }
   const auto walls = split_names(first.get({"Walls"}, "names"));
   // Pass 2: strict, with every named subsection declared.
   auto prm = std::make_unique<dealii::ParameterHandler>();
   declare_all_parameters(*prm, groups, loads, walls);
-  parse_file(*prm, file, overrides, false);
+  parse_file(*prm, file, text, overrides, false);
   return prm;
 }
 } // namespace dembridge::app

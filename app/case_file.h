@@ -20,6 +20,11 @@ void declare_all_parameters(dealii::ParameterHandler& prm,
 /// one-line message naming the file (or override) and the reason.
 std::unique_ptr<dealii::ParameterHandler> read_case(const std::string& file,
                                                     const std::vector<std::string>& overrides);
+/// The same for the text of a case file; @p file names it in messages and decides the format
+/// by its extension (.json and .xml are read from the file itself). The fuzz target's entry.
+std::unique_ptr<dealii::ParameterHandler>
+read_case_text(const std::string& text, const std::string& file,
+               const std::vector<std::string>& overrides);
 
 /// Folds a deal.II exception text into one line (its "Additional information" part).
 std::string one_line(const std::string& what);

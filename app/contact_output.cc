@@ -47,6 +47,9 @@ void ContactOutput::summary(nlohmann::json& j, double time) const
   j["contact_updates"] = c.contact_updates();
   j["neighbour_list_builds"] = c.list_builds();
   j["neighbour_search_seconds"] = c.search_seconds();
+  j["contact_seconds"] = c.contact_seconds();
+  j["contact_updates_per_second"] =
+      c.contact_seconds() > 0 ? double(c.contact_updates()) / c.contact_seconds() : 0.0;
   j["contact_activation_energy"] = c.activation_energy();
   for (std::size_t w = 0; w < c.walls(); ++w)
   {

@@ -83,6 +83,10 @@ void declare_wall_parameters(ParameterHandler& prm, const std::vector<std::strin
                       "The velocity ramps linearly from 0 over this time (s).");
     prm.declare_entry("end time", "inf", Anything(),
                       "Time (s) at which the wall stops; 'inf': never.");
+    prm.declare_entry("touch", "false", Bool(),
+                      "true: at t = 0 the plane is moved along its normal until it touches the "
+                      "outermost particle on its side (a platen laid on a specimen whose extent "
+                      "the case does not know).");
     prm.leave_subsection();
   }
 }
@@ -119,6 +123,7 @@ void parse_contact_parameters(ParameterHandler& prm, dem::CaseConfig& c)
     w.normal = get_vec3(prm, "normal");
     w.velocity = get_vec3(prm, "velocity");
     w.ramp_time = prm.get_double("ramp time");
+    w.touch = prm.get_bool("touch");
     const std::string end = prm.get("end time");
     if (end == "inf" || end == "never")
       w.end_time = std::numeric_limits<double>::infinity();

@@ -2,11 +2,17 @@
 //   dembridge run CASE.prm [--set "Section/Key=value"]... [--output-dir DIR]
 //   dembridge print-parameters
 //   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
+//   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "dem/core/types.h"
 #include "dem_run.h"
+#include "elasticity_command.h"
+#include "memory_guard.h"
+#include "output_folder.h"
+#include "provenance.h"
 #include "verify.h"
+#include "version.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
@@ -35,25 +41,47 @@ void write_summary(const fs::path& dir, const nlohmann::json& j)
   fs::rename(tmp, dir / "summary.json");
 }
 
+/// One line for a command-line error; an unknown subcommand is named with the known ones.
+std::string usage_error(CLI::App& app, int argc, char** argv, const std::string& what)
+{
+  if (argc > 1 && argv[1][0] != '-')
+  {
+    std::string known;
+    bool found = false;
+    for (const auto* sub : app.get_subcommands({}))
+    {
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+      found = found || sub->get_name() == argv[1];
+    }
+    if (!found)
+      return "unknown subcommand '" + std::string(argv[1]) + "' (expected " + known + ")";
+  }
+  return dembridge::app::one_line(what);
+}
+
 int run(const std::string& case_file, const std::vector<std::string>& overrides,
         std::string output_dir)
 {
   const auto start = std::chrono::steady_clock::now();
+  const std::string started_at = dembridge::app::utc_now();
   auto prm = dembridge::app::read_case(case_file, overrides);
   if (output_dir.empty())
     output_dir = (fs::path("output") / fs::path(case_file).stem()).string();
   const fs::path dir(output_dir);
-  fs::create_directories(dir);
-  fs::remove(dir / "summary.json"); // a stale summary must not survive a failed run
+  // Written into a staging folder and moved in on success (output_folder.h): a failed or killed
+  // run leaves the previous run's complete results, never a mix.
+  dembridge::app::OutputFolder folder(dir, MPI_COMM_WORLD);
   // Paths inside the case (particle files, meshes) are relative to the case file.
   const fs::path case_dir = fs::absolute(case_file).parent_path();
-  nlohmann::json summary;
+  nlohmann::json summary, memory_estimate;
   const std::string mode = prm->get("Mode");
-  const fs::path abs_dir = fs::absolute(dir);
+  const fs::path abs_dir = folder.staging();
   const fs::path cwd = fs::current_path();
   fs::current_path(case_dir);
   try
   {
+    // before building anything: refuse a case the machine's memory cannot hold
+    memory_estimate = dembridge::app::check_memory(*prm);
     if (mode == "dem")
       summary = dembridge::app::run_dem_case(*prm, abs_dir);
     else
@@ -71,6 +99,14 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     fs::current_path(cwd);
     throw std::runtime_error(fs::path(case_file).filename().string() + ": " + e.what());
   }
+  catch (const std::runtime_error& e)
+  {
+    // FE input errors (std::runtime_error naming Section/key) name the file as DEM errors do
+    fs::current_path(cwd);
+    const std::string name = fs::path(case_file).filename().string();
+    const std::string what = e.what();
+    throw std::runtime_error(what.rfind(name, 0) == 0 ? what : name + ": " + what);
+  }
   catch (...)
   {
     fs::current_path(cwd);
@@ -80,9 +116,24 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
   summary["case"] = fs::path(case_file).filename().string();
   summary["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    write_summary(dir, summary);
-  std::cout << "dembridge: wrote " << (dir / "summary.json").string() << '\n';
+  summary["memory_estimate"] = memory_estimate;
+  summary["peak_memory_bytes"] = dembridge::app::peak_memory_bytes();
+  summary.update(dembridge::app::provenance(*prm, started_at));
+  const bool rank0 = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (rank0)
+  {
+    dembridge::app::write_parameters_file(*prm, case_file, abs_dir / "parameters.prm");
+    auto files = folder.staged_files();
+    files.push_back("summary.json");
+    summary["output_files"] = files;
+    write_summary(abs_dir, summary);
+  }
+  folder.commit();
+  if (rank0)
+  {
+    dembridge::app::print_figures(summary, std::cout);
+    std::cout << "dembridge: wrote " << (dir / "summary.json").string() << '\n';
+  }
   return 0;
 }
 } // namespace
@@ -90,8 +141,11 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
 int main(int argc, char** argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dembridge::app::set_command_line(argc, argv);
   CLI::App app{"dembridge: coupled DEM-FEM for bonded-particle models"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "dembridge " + dembridge::app::version() + " (git commit " +
+                                        dembridge::app::git_commit() + ")");
   std::string case_file, output_dir;
   std::vector<std::string> overrides;
   auto* run_cmd = app.add_subcommand("run", "Run a case file (.prm or .json)");
@@ -109,7 +163,8 @@ int main(int argc, char** argv)
   verify_cmd->add_option("--output-dir", verify.output_dir,
                          "Output folder (default output/verify_CASE)");
   auto* from = verify_cmd->add_option("--material-from", verify.material_from,
-                                      "summary.json of a uniaxial DEM test: E, mean nu");
+                                      "summary.json of a uniaxial DEM test (E, mean nu) or "
+                                      "an elasticity.json (its stiffness tensor)");
   auto* e_opt = verify_cmd->add_option("--youngs-modulus", verify.youngs_modulus, "E (Pa)");
   auto* nu_opt = verify_cmd->add_option("--poisson-ratio", verify.poisson_ratio, "nu");
   verify_cmd->add_option("--shear-modulus", verify.shear_modulus,
@@ -119,13 +174,25 @@ int main(int argc, char** argv)
   verify_cmd->add_option("--dem-run", verify.dem_run,
                          "Folder of a finished DEM run of this case (its summary.json is used)");
   verify_cmd->add_flag("!--no-plot", verify.plot, "Do not write comparison.png");
+  verify_cmd
+      ->add_flag("--measured-tensor", verify.measured_tensor,
+                 "FE material: the stiffness tensor measured on the case's own packing")
+      ->excludes(from)
+      ->excludes(e_opt);
+  dembridge::app::ElasticityOptions elasticity;
+  auto* elasticity_cmd = dembridge::app::add_elasticity_command(app, elasticity);
   try
   {
     app.parse(argc, argv);
   }
   catch (const CLI::ParseError& e)
   {
-    return app.exit(e);
+    // --help and --version exit 0; a usage error is one line and exit code 1 like bad input
+    if (e.get_exit_code() == 0)
+      return app.exit(e);
+    std::cerr << "dembridge: error: " << usage_error(app, argc, argv, e.what())
+              << " (dembridge --help lists the usage)" << std::endl;
+    return 1;
   }
   try
   {
@@ -138,6 +205,8 @@ int main(int argc, char** argv)
     }
     if (*verify_cmd)
       return dembridge::app::verify(verify);
+    if (*elasticity_cmd)
+      return dembridge::app::run_elasticity(elasticity);
     return run(case_file, overrides, output_dir);
   }
   catch (const std::exception& e)

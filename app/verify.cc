@@ -2,9 +2,9 @@
 
 #include "verify.h"
 #include "case_file.h"
+#include "dem/core/types.h"
 #include "dem/model/groups.h"
 #include "dem/model/model.h"
-#include "dem/core/types.h"
 #include "dem_parameters.h"
 #include "dem_run.h"
 #include "verify_model.h"
@@ -72,6 +72,43 @@ ElasticConstants material_from_summary(const json& j, const std::string& where)
   return m;
 }
 
+ElasticConstants material_from_tensor(const dem::Matrix6& C, const std::string& where)
+{
+  dem::ElasticProperties p;
+  try
+  {
+    p = dem::elastic_properties(C, where);
+  }
+  catch (const dem::InputError& e)
+  {
+    throw std::runtime_error(e.what());
+  }
+  ElasticConstants m;
+  m.stiffness_tensor = C;
+  m.youngs_modulus = p.youngs_modulus.x();
+  m.poisson_ratio = p.poisson_ratio.sum() / 6; // the six off-diagonal ratios (diagonal 0)
+  return m;
+}
+
+ElasticConstants material_from_elasticity(const json& j, const std::string& where)
+{
+  if (!j.is_object() || !j.contains("stiffness_tensor"))
+    throw std::runtime_error(where + ": no stiffness_tensor (not an elasticity.json)");
+  const json& t = j["stiffness_tensor"];
+  dem::Matrix6 C;
+  bool ok = t.is_array() && t.size() == 6;
+  for (int i = 0; ok && i < 6; ++i)
+  {
+    ok = t[i].is_array() && t[i].size() == 6;
+    for (int k = 0; ok && k < 6; ++k)
+      if ((ok = t[i][k].is_number()))
+        C(i, k) = t[i][k].get<double>();
+  }
+  if (!ok)
+    throw std::runtime_error(where + ": stiffness_tensor is not a 6x6 array of numbers");
+  return material_from_tensor(C, where + ": stiffness_tensor");
+}
+
 json read_json_file(const std::string& file, const std::string& what)
 {
   if (!fs::is_regular_file(file))
@@ -92,23 +129,7 @@ json read_json_file(const std::string& file, const std::string& what)
 
 namespace
 {
-/// Changes the working directory for its lifetime (case-relative paths).
 const char* const axis_name = "xyz";
-
-class WorkingDirectory
-{
-public:
-  explicit WorkingDirectory(const fs::path& dir) : previous_(fs::current_path())
-  {
-    fs::current_path(dir);
-  }
-  ~WorkingDirectory() { fs::current_path(previous_); }
-  WorkingDirectory(const WorkingDirectory&) = delete;
-  WorkingDirectory& operator=(const WorkingDirectory&) = delete;
-
-private:
-  fs::path previous_;
-};
 
 std::optional<double> number_at(const json& j, std::initializer_list<const char*> path)
 {
@@ -313,12 +334,20 @@ int verify(const VerifyOptions& o)
   const fs::path case_dir = fs::absolute(o.case_file).parent_path();
   dem::CaseConfig config;
   Plan plan;
+  std::optional<dem::Matrix6> measured_tensor; // --measured-tensor
   try
   {
     WorkingDirectory cd(case_dir);
     config = parse_dem_case(*prm);
     const dem::Model model = dem::build_model(config);
     plan = make_plan(config, model, test);
+    if (o.measured_tensor)
+    {
+      dem::ElasticityMeasurementSettings settings;
+      settings.core_period =
+          dem::lattice_axis_periods(config.particles.kind, config.particles.radius);
+      measured_tensor = dem::measured_stiffness_tensor(model, settings).properties.stiffness;
+    }
   }
   catch (const std::exception& e)
   {
@@ -337,14 +366,24 @@ int verify(const VerifyOptions& o)
   }
   else if (!o.material_from.empty())
   {
-    material = material_from_summary(read_json_file(o.material_from, "--material-from"),
-                                     "--material-from " + o.material_from);
+    const json j = read_json_file(o.material_from, "--material-from");
+    const std::string where = "--material-from " + o.material_from;
+    material = j.is_object() && j.contains("stiffness_tensor")
+                   ? material_from_elasticity(j, where) // an elasticity.json
+                   : material_from_summary(j, where);
     material->source = fs::absolute(o.material_from).lexically_normal().string();
+  }
+  else if (measured_tensor)
+  {
+    material = material_from_tensor(*measured_tensor, in_case("measured stiffness tensor"));
+    material->source = "measured on this case's packing (dem/measurements/elasticity_tensor.h)";
   }
   else if (plan.test != "uniaxial")
     throw std::runtime_error(in_case("verify needs E and nu for a bending test: give "
-                                     "--material-from UNIAXIAL_SUMMARY.json or --youngs-modulus "
-                                     "and --poisson-ratio"));
+                                     "--material-from UNIAXIAL_SUMMARY.json (or elasticity.json), "
+                                     "--measured-tensor, or --youngs-modulus and --poisson-ratio"));
+  if (o.shear_modulus && material && material->stiffness_tensor)
+    throw std::runtime_error("--shear-modulus: the material is a full stiffness tensor already");
   if (o.shear_modulus && !(*o.shear_modulus > 0 && std::isfinite(*o.shear_modulus)))
     throw std::runtime_error("--shear-modulus: " + std::to_string(*o.shear_modulus) +
                              " is not positive");
@@ -425,10 +464,18 @@ int verify(const VerifyOptions& o)
 
   // ---- 5. Report.
   const Report report = compare(plan, dem, fe, layers);
-  char constants[96];
-  std::snprintf(constants, sizeof constants, "E = %.6g GPa, nu = %.4g%s",
-                material->youngs_modulus / 1e9, material->poisson_ratio,
-                material->shear_modulus > 0 ? ", cubic" : "");
+  char constants[128];
+  if (material->stiffness_tensor)
+  {
+    const dem::Matrix6& C = *material->stiffness_tensor;
+    std::snprintf(constants, sizeof constants,
+                  "stiffness tensor C11 = %.4g, C12 = %.4g, C44 = %.4g GPa", C(0, 0) / 1e9,
+                  C(0, 1) / 1e9, C(3, 3) / 1e9);
+  }
+  else
+    std::snprintf(constants, sizeof constants, "E = %.6g GPa, nu = %.4g%s",
+                  material->youngs_modulus / 1e9, material->poisson_ratio,
+                  material->shear_modulus > 0 ? ", cubic" : "");
   if (material->shear_modulus > 0)
     std::snprintf(constants + std::strlen(constants), sizeof constants - std::strlen(constants),
                   " G = %.4g GPa", material->shear_modulus / 1e9);
@@ -441,8 +488,22 @@ int verify(const VerifyOptions& o)
                          {"shear_modulus", material->shear_modulus > 0
                                                ? json(material->shear_modulus)
                                                : json(nullptr)},
-                         {"symmetry", material->shear_modulus > 0 ? "cubic" : "isotropic"},
+                         {"symmetry", material->stiffness_tensor    ? "anisotropic (6x6 tensor)"
+                                      : material->shear_modulus > 0 ? "cubic"
+                                                                    : "isotropic"},
                          {"source", material->source}};
+  if (material->stiffness_tensor)
+  {
+    json rows = json::array();
+    for (int i = 0; i < 6; ++i)
+    {
+      json row = json::array();
+      for (int k = 0; k < 6; ++k)
+        row.push_back((*material->stiffness_tensor)(i, k));
+      rows.push_back(row);
+    }
+    summary["material"]["stiffness_tensor"] = rows;
+  }
   summary["fe_model"] = {{"degree", degree},
                          {"cell_size", cell_size},
                          {"n_dofs", fe.value("n_dofs", 0)},

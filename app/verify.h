@@ -10,7 +10,9 @@
 //   D/summary.json, D/comparison.csv, D/comparison.png (matplotlib via python3)
 // Every input is checked before anything is written; results are written under temporary names
 // and renamed, summary.json last, so a failed verification leaves no summary.json.
+#include "dem/measurements/elasticity_tensor.h"
 #include <deal.II/base/parameter_handler.h>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -18,6 +20,23 @@
 
 namespace dembridge::app
 {
+/// Changes the working directory for its lifetime (case-relative paths).
+class WorkingDirectory
+{
+public:
+  explicit WorkingDirectory(const std::filesystem::path& dir)
+      : previous_(std::filesystem::current_path())
+  {
+    std::filesystem::current_path(dir);
+  }
+  ~WorkingDirectory() { std::filesystem::current_path(previous_); }
+  WorkingDirectory(const WorkingDirectory&) = delete;
+  WorkingDirectory& operator=(const WorkingDirectory&) = delete;
+
+private:
+  std::filesystem::path previous_;
+};
+
 /// Declares `subsection Verification` (FE degree and cell size, the test, the stress slabs).
 void declare_verification_parameters(dealii::ParameterHandler& prm);
 
@@ -31,17 +50,33 @@ struct VerifyOptions
   std::optional<double> shear_modulus; ///< cubic FE material with C44 = G (e.g. a lattice's G)
   std::string dem_run; ///< folder of a finished DEM run of the same case (skip the DEM run)
   bool plot = true;
+  /// FE material: the stiffness tensor measured on the case's own packing
+  /// (dem/measurements/elasticity_tensor.h, as `dembridge elasticity` measures it)
+  bool measured_tensor = false;
 };
 
 /// Constants of the FE material and where they came from: isotropic (E, nu), or with a shear
-/// modulus G > 0 cubic along the axes (uniaxial E and nu along every axis, C44 = G).
+/// modulus G > 0 cubic along the axes (uniaxial E and nu along every axis, C44 = G), or a full
+/// 6x6 stiffness tensor (a packing's measured one; E and nu then only describe it: E_x and the
+/// mean of its six Poisson's ratios).
 struct ElasticConstants
 {
   double youngs_modulus = 0;
   double poisson_ratio = 0;
-  double shear_modulus = 0; ///< 0: isotropic, G = E / 2(1 + nu)
+  double shear_modulus = 0;                     ///< 0: isotropic, G = E / 2(1 + nu)
+  std::optional<dem::Matrix6> stiffness_tensor; ///< Pa, Voigt order xx, yy, zz, yz, xz, xy
   std::string source;
 };
+
+/// The material of a stiffness tensor (checked symmetric positive definite); throws
+/// std::runtime_error "<where>: <reason>".
+ElasticConstants material_from_tensor(const dem::Matrix6& C, const std::string& where);
+
+/// The stiffness_tensor of an elasticity.json (`dembridge elasticity`); throws
+/// std::runtime_error "<where>: <reason>" if it is missing, not 6x6 numbers, or not positive
+/// definite.
+ElasticConstants material_from_elasticity(const nlohmann::json& elasticity,
+                                          const std::string& where);
 
 /// E and nu of a uniaxial test summary: youngs_modulus and the mean of its poisson_ratio_*
 /// entries. Throws std::runtime_error "<where>: <reason>" if they are missing or unphysical.

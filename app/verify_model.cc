@@ -253,7 +253,15 @@ std::string fe_case(const Plan& p, const ElasticConstants& mat, const json& dem,
   if (!p.patches.empty())
     s << "    set patches = " << p.patches << "\n";
   s << "  end\n  subsection Material\n";
-  if (mat.shear_modulus > 0)
+  if (mat.stiffness_tensor)
+  {
+    s << "    set model = anisotropic\n    set voigt stiffness = ";
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        s << (i + j ? ", " : "") << num((*mat.stiffness_tensor)(i, j));
+    s << "\n";
+  }
+  else if (mat.shear_modulus > 0)
   {
     // cubic: compliance S11 = 1/E, S12 = -nu/E, S44 = 1/G; the normal block inverts as for the
     // isotropic material, the shear block is G.

@@ -29,6 +29,10 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   problem.setup_system();
   pcout << "FEM static: " << problem.n_cells() << " cells, " << problem.n_dofs() << " dofs"
         << std::endl;
+  if (const std::string free = problem.free_rigid_body_modes(); !free.empty())
+    throw std::runtime_error("FEM/Boundary conditions: the supports leave rigid-body modes free (" +
+                             free + "), so the static problem has no unique solution; hold "
+                             "more components (e.g. 'points = X,Y,Z: xyz')");
   problem.assemble_system(/*condense=*/true);
   const unsigned int iterations = problem.solve();
   pcout << "FEM static: CG + BoomerAMG converged in " << iterations << " iterations" << std::endl;

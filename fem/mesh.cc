@@ -1,10 +1,13 @@
 // dembridge::fem — coarse meshes: generated boxes and gmsh files, with named boundaries.
 #include "mesh.h"
 
+#include "dem/core/available_memory.h"
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -13,22 +16,25 @@
 
 namespace dembridge::fem
 {
-BoundaryNames read_physical_names(const std::string& file)
+BoundaryNames read_physical_names(std::istream& in, const std::string& file)
 {
-  std::ifstream in(file);
   BoundaryNames names;
   std::string line;
   while (std::getline(in, line))
     if (line.rfind("$PhysicalNames", 0) == 0)
     {
-      unsigned int n = 0;
-      in >> n;
-      for (unsigned int i = 0; i < n; ++i)
+      long n = 0;
+      if (!(in >> n) || n < 0)
+        throw std::runtime_error("FEM/Mesh/file: bad $PhysicalNames count in " + file);
+      for (long i = 0; i < n; ++i)
       {
         int dimension = 0;
-        unsigned int tag = 0;
+        long tag = 0;
         std::string name;
-        in >> dimension >> tag;
+        // a short or malformed section ends the loop here instead of running n times
+        if (!(in >> dimension >> tag) || tag < 0 ||
+            tag >= long(dealii::numbers::internal_face_boundary_id))
+          throw std::runtime_error("FEM/Mesh/file: bad $PhysicalNames entry in " + file);
         std::getline(in, name);
         const auto q0 = name.find('"');
         const auto q1 = name.rfind('"');
@@ -43,21 +49,55 @@ BoundaryNames read_physical_names(const std::string& file)
   return names;
 }
 
+BoundaryNames read_physical_names(const std::string& file)
+{
+  std::ifstream in(file);
+  return read_physical_names(in, file);
+}
+
 std::string resolve_mesh_file(const std::string& file)
 {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(file))
     return file;
+  // the paths tried, absolute: a relative path is resolved against the working directory,
+  // which `dembridge run` sets to the case file's folder
+  std::string tried = fs::absolute(file).lexically_normal().string();
 #ifdef DEMBRIDGE_MESH_DIR
   const fs::path generated = fs::path(DEMBRIDGE_MESH_DIR) / fs::path(file).filename();
   if (fs::path(file).is_relative() && fs::is_regular_file(generated))
     return generated.string();
+  if (fs::path(file).is_relative())
+    tried += " and " + generated.lexically_normal().string();
 #endif
-  throw std::runtime_error("FEM/Mesh/file: mesh file '" + file + "' does not exist");
+  throw std::runtime_error("FEM/Mesh/file: mesh file '" + file + "' does not exist (looked for " +
+                           tried + ")");
 }
 
 namespace
 {
+/// Refuses refinements whose mesh the machine cannot hold, before refining: each global
+/// refinement multiplies the cells by 8; a Q_p mesh of C cells has about (p C^(1/3) + 1)^3
+/// nodes, 3 DoFs each; a static solve takes about 6 kB per DoF for Q1 and 11 kB for Q2 (the
+/// cautious end of bench/RESULTS_FEM.md: matrix, AMG hierarchy, vectors).
+void check_refined_mesh_fits(const Parameters& p, double coarse_cells)
+{
+  const double cells = coarse_cells * std::pow(8.0, p.refinements);
+  const double nodes = std::pow(p.degree * std::cbrt(cells) + 1, 3);
+  const double dofs = 3 * nodes;
+  const double bytes_per_dof = p.degree == 1 ? 6e3 : 11e3;
+  const double available = available_memory_bytes();
+  if (!(available > 0) || dofs * bytes_per_dof <= available)
+    return;
+  std::ostringstream text;
+  text.precision(3);
+  text << "FEM/Mesh/refinements: " << p.refinements << " refinements of the " << coarse_cells
+       << " coarse cells make " << cells << " cells and about " << dofs << " DoFs (Q"
+       << p.degree << "), needing about " << human_bytes(dofs * bytes_per_dof)
+       << " of memory; this machine has " << human_bytes(available) << " available";
+  throw std::runtime_error(text.str());
+}
+
 /// Boundary faces whose centres lie in a patch box get the patch's new boundary id. Done after
 /// the global refinement (the mesh is not refined again), on every cell a rank sees, so that
 /// ghost faces carry the same ids as their owners'.
@@ -146,6 +186,7 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
                                (reason.empty() ? "" : ": " + reason));
     }
   }
+  check_refined_mesh_fits(p, double(tria.n_global_active_cells()));
   tria.refine_global(p.refinements);
   apply_patches(p.patches, tria, names);
   return names;

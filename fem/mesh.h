@@ -5,6 +5,7 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <istream>
 #include <map>
 #include <string>
 
@@ -32,7 +33,10 @@ dealii::types::boundary_id find_boundary(const BoundaryNames& names, const std::
 /// the build's meshes folder, where meshes/*.geo are meshed. Throws naming FEM/Mesh/file.
 std::string resolve_mesh_file(const std::string& file);
 
-/// Read the $PhysicalNames section of a .msh file (versions 2.2 and 4.1).
+/// Read the $PhysicalNames section of a .msh file (versions 2.2 and 4.1); throws
+/// std::runtime_error naming FEM/Mesh/file for a malformed section.
 BoundaryNames read_physical_names(const std::string& file);
+/// The same from a stream; @p file names it in messages.
+BoundaryNames read_physical_names(std::istream& in, const std::string& file);
 
 } // namespace dembridge::fem

@@ -137,8 +137,10 @@ void declare_fem_parameters(ParameterHandler& prm)
                       "box: subdivided hyper-rectangle with faces x-min, x-max, y-min, y-max, "
                       "z-min, z-max. gmsh: hexahedral .msh file with named physical groups.");
     prm.declare_entry("file", "", Patterns::Anything(),
-                      "Path of the gmsh .msh file (source = gmsh), relative to the working "
-                      "directory.");
+                      "Path of the gmsh .msh file (source = gmsh). A relative path is relative "
+                      "to the case file's folder (dembridge run works there); if no such file "
+                      "exists, the file of that name in the build's meshes folder (where "
+                      "meshes/*.geo are meshed) is used.");
     prm.declare_entry("box lower", "0,0,0", Patterns::List(Patterns::Double(), 3, 3),
                       "Lower corner of the box (m).");
     prm.declare_entry("box upper", "0.25,0.1,0.1", Patterns::List(Patterns::Double(), 3, 3),

@@ -1,5 +1,7 @@
 #include "dem/contacts/contact_config.h"
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace dembridge::dem
@@ -69,5 +71,19 @@ void WallConfig::validate() const
     throw InputError(where + "/ramp time: must not be negative");
   if (!(end_time > 0))
     throw InputError(where + "/end time: must be positive");
+}
+
+void place_touching_walls(std::vector<WallConfig>& walls, const ParticleStore& p)
+{
+  for (auto& w : walls)
+  {
+    if (!w.touch || p.size() == 0)
+      continue;
+    const Vec3 n = w.normal.normalized();
+    double gap = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      gap = std::min(gap, (p.position[i] - w.point).dot(n) - p.radius[i]);
+    w.point += gap * n;
+  }
 }
 } // namespace dembridge::dem

@@ -8,6 +8,7 @@
 //   zeta = -ln e / sqrt(pi^2 + ln^2 e)      damping ratio of the linear law (c = 2 zeta sqrt(m k))
 //   beta =  ln e / sqrt(pi^2 + ln^2 e)      = -zeta, the factor of the Hertz-Mindlin dashpot
 // Units: stiffnesses N/m (rolling N·m/rad), moduli Pa, lengths m, velocities m/s.
+#include "dem/core/particle_store.h"
 #include "dem/core/types.h"
 #include <array>
 #include <limits>
@@ -66,8 +67,15 @@ struct WallConfig
   Vec3 velocity = Vec3::Zero(); ///< full velocity, m/s
   double ramp_time = 0;         ///< s
   double end_time = std::numeric_limits<double>::infinity(); ///< s: the wall stops here
+  /// true: at t = 0 the plane is moved along its normal until it touches the outermost particle
+  /// on its side (a platen laid on a specimen whose extent the case does not know)
+  bool touch = false;
 
   /// Throws InputError naming Wall NAME/<key>.
   void validate() const;
 };
+
+/// Moves every wall with `touch` along its normal so that it touches the particle that reaches
+/// furthest to its side (no overlap, no gap).
+void place_touching_walls(std::vector<WallConfig>& walls, const ParticleStore& p);
 } // namespace dembridge::dem

@@ -178,10 +178,12 @@ void ContactForces::add_forces(ParticleStore& p, double time, double dt, bool re
                : compute<Law, false, false, false>(p, time, dt);
     }
   };
+  const auto searched = clock::now();
   if (material_.model == ContactModel::linear)
     with_law.operator()<LinearSpringDashpot>();
   else
     with_law.operator()<HertzMindlin>();
+  contact_seconds_ += std::chrono::duration<double>(clock::now() - searched).count();
   if (monitor_.enabled)
     update_monitor(p, time, dt);
   if (platens_.enabled)

@@ -66,6 +66,8 @@ public:
   long list_builds() const { return list_.builds(); }
   std::size_t listed_pairs() const { return list_.size(); }
   double search_seconds() const { return search_seconds_; }
+  /// Wall time in the contact force loops (pairs and walls), s.
+  double contact_seconds() const { return contact_seconds_; }
   long contact_updates() const { return contact_updates_; }
 
 private:
@@ -111,7 +113,7 @@ private:
 
   ContactMonitor monitor_;
   PlatenTest platens_;
-  double search_seconds_ = 0;
+  double search_seconds_ = 0, contact_seconds_ = 0;
   long contact_updates_ = 0;
 };
 } // namespace dembridge::dem

@@ -1,5 +1,6 @@
 #include "dem/model/groups.h"
 #include <algorithm>
+#include <sstream>
 
 namespace dembridge::dem
 {
@@ -39,6 +40,29 @@ Vec3 total_force(const ParticleStore& p, const Group& g)
     sum += p.force[i];
   return sum;
 }
+
+namespace
+{
+/// A `nearest` point far outside the specimen (further than a tenth of its bounding box's
+/// diagonal) is most likely a typo or the wrong unit (mm for m): refused with the distance.
+void check_nearest_point(const ParticleStore& p, const Vec3& point, const std::string& where)
+{
+  if (p.size() == 0)
+    return;
+  const auto [lo, hi] = reference_extent(p);
+  const double outside = (point - point.cwiseMax(lo).cwiseMin(hi)).norm();
+  const double diagonal = (hi - lo).norm();
+  if (!(outside > 0.1 * diagonal))
+    return;
+  std::ostringstream text;
+  text.precision(4);
+  text << where.substr(0, where.rfind('/')) << "/point: (" << point.x() << ", " << point.y()
+       << ", " << point.z() << ") lies " << outside << " m outside the specimen, whose bounding box is ("
+       << lo.x() << ", " << lo.y() << ", " << lo.z() << ") to (" << hi.x() << ", " << hi.y()
+       << ", " << hi.z() << ") m (more than a tenth of its diagonal away; units are m)";
+  throw InputError(text.str());
+}
+} // namespace
 
 Group select_group(const ParticleStore& p, const std::string& name, const GroupSelection& s,
                    const std::string& where)
@@ -96,6 +120,7 @@ Group select_group(const ParticleStore& p, const std::string& name, const GroupS
         best = i, best_d2 = d2;
     if (best >= 0)
       g.members.push_back(int(best));
+    check_nearest_point(p, s.point, where);
     break;
   }
   }

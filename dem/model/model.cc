@@ -1,5 +1,6 @@
 #include "dem/model/model.h"
 #include "dem/bonds/bonding.h"
+#include "dem/model/load_checks.h"
 #include "dem/contacts/contact_forces.h"
 #include "dem/packing/packings.h"
 #include <numbers>
@@ -115,6 +116,7 @@ Model build_model(const CaseConfig& c)
                        "over a positive time (a jump is an infinite velocity)");
     m.loads.push_back(l);
   }
+  check_loads_act_on_free_dofs(m);
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
   m.critical = estimate_critical_time_step(p, m.bonds, c.run.particle_damping);
@@ -123,7 +125,9 @@ Model build_model(const CaseConfig& c)
     if (c.run.static_solver)
       throw InputError("Contacts/model: the static solver solves the bond network alone; "
                        "contacts and walls need Simulation/solver = explicit");
-    auto contacts = std::make_shared<ContactForces>(c.contacts, c.walls);
+    std::vector<WallConfig> walls = c.walls;
+    place_touching_walls(walls, p);
+    auto contacts = std::make_shared<ContactForces>(c.contacts, walls);
     m.critical.contact_bound =
         contacts->critical_time_step(p) / std::sqrt(1.0 + c.run.particle_damping);
     if (!c.contacts.platens.empty())
@@ -138,7 +142,7 @@ Model build_model(const CaseConfig& c)
         throw InputError("Contacts/platens: expected the names of two walls 'lower, upper'");
       const auto [lo, hi] = reference_extent(p);
       int axis;
-      c.walls[std::size_t(index[0])].normal.cwiseAbs().maxCoeff(&axis);
+      walls[std::size_t(index[0])].normal.cwiseAbs().maxCoeff(&axis);
       const Vec3 size = hi - lo;
       contacts->measure_platens(index[0], index[1], size.prod() / size[axis]);
     }

@@ -19,12 +19,16 @@ CellList::CellList(const std::vector<Vec3>& x, double cell_size) : h_(cell_size)
     }
   }
   origin_ = lo;
+  // counted in double first: a far-flung particle must not overflow the conversion to long
+  double cells[3], total = 1;
   for (int d = 0; d < 3; ++d)
-    n_[d] = std::max<long>(1, long(std::floor((hi[d] - lo[d]) / h_)) + 1);
-  if (double(n_[0]) * n_[1] * n_[2] > 4.0 * x.size() + 1e6)
+    total *= cells[d] = std::max(1.0, std::floor((hi[d] - lo[d]) / h_) + 1);
+  if (!(total <= 4.0 * double(x.size()) + 1e6))
     throw InputError(
         "cell list: the particles are spread too far apart for their size (more than " +
-        std::to_string(long(4.0 * x.size() + 1e6)) + " cells)");
+        std::to_string(long(4.0 * double(x.size()) + 1e6)) + " cells)");
+  for (int d = 0; d < 3; ++d)
+    n_[d] = long(cells[d]);
   const long ncell = n_[0] * n_[1] * n_[2];
   cell_start_.assign(ncell + 1, 0);
   for (const auto& p : x)

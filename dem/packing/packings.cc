@@ -1,7 +1,10 @@
 #include "dem/packing/packings.h"
 #include "dem/packing/cell_list.h"
 #include "dem/packing/packing_random.h"
+#include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -76,17 +79,88 @@ void remove_notch(const ParticleSource& s, ParticleStore& p)
 }
 } // namespace
 
-void read_particle_file(const std::string& path, double density, ParticleStore& p)
+namespace
 {
-  // why: a directory opens as a stream on Linux and then reads as empty
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path + ": cannot read the particle file (it is a directory)");
-  std::ifstream in(path);
-  if (!in)
-    throw InputError(path + ": cannot open the particle file");
+std::string lower(std::string s)
+{
+  for (char& c : s)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Column of x, y, z, r named by a header line ("x, y, z, r" in any order; "radius" for r);
+/// throws naming the line when a name is unknown, repeated or missing.
+std::array<int, 4> header_columns(const std::string& line, const std::string& where)
+{
+  std::istringstream ss(line);
+  std::array<int, 4> column{-1, -1, -1, -1};
+  int n = 0;
+  for (std::string name; ss >> name; ++n)
+  {
+    name = lower(name);
+    const std::string known = "xyzr";
+    const auto k = name == "radius" ? 3 : name.size() == 1 ? known.find(name[0]) : std::string::npos;
+    if (k == std::string::npos)
+      throw InputError(where + ": unknown column '" + name +
+                       "' in the header (expected x, y, z and r, in any order)");
+    if (column[k] >= 0)
+      throw InputError(where + ": the header names column '" + name + "' twice");
+    column[k] = n;
+  }
+  for (int k = 0; k < 4; ++k)
+    if (column[k] < 0)
+      throw InputError(where + ": the header lacks column '" + std::string(1, "xyzr"[k]) + "'");
+  return column;
+}
+
+/// Refuses particles of a file that overlap by more than max_file_overlap of the smaller radius
+/// (or sit at one place), naming the pair and their lines.
+void check_file_overlaps(const ParticleStore& p, const std::vector<int>& line,
+                         const std::string& name)
+{
+  double rmax = 0;
+  for (double r : p.radius)
+    rmax = std::max(rmax, r);
+  try
+  {
+    CellList cells(p.position, 2.0 * rmax);
+    cells.for_each_pair(
+        p.position,
+        [&](int i, int j)
+        {
+          const double d = (p.position[i] - p.position[j]).norm();
+          const double smaller = std::min(p.radius[i], p.radius[j]);
+          const std::string pair = "particles " + std::to_string(i) + " and " + std::to_string(j);
+          const std::string lines =
+              " (lines " + std::to_string(line[i]) + " and " + std::to_string(line[j]) + ")";
+          if (d < 1e-6 * smaller)
+            throw InputError(name + ": " + pair + " sit at the same position" + lines);
+          const double overlap = (p.radius[i] + p.radius[j] - d) / smaller;
+          if (overlap > max_file_overlap)
+          {
+            char amount[64];
+            std::snprintf(amount, sizeof amount, "%.3g %%", 100 * overlap);
+            throw InputError(name + ": " + pair + lines + " overlap by " + amount +
+                             " of the smaller radius (at most " +
+                             std::to_string(int(100 * max_file_overlap)) + " % is accepted)");
+          }
+        });
+  }
+  catch (const InputError& e)
+  {
+    const std::string what = e.what();
+    throw InputError(what.rfind(name, 0) == 0 ? what : name + ": " + what);
+  }
+}
+} // namespace
+
+void read_particles(std::istream& in, const std::string& name, double density, ParticleStore& p)
+{
   std::string line;
   int lineno = 0;
+  std::array<int, 4> column{0, 1, 2, 3}; // x, y, z, r
+  std::vector<int> line_of;
+  bool header_allowed = true;
   while (std::getline(in, line))
   {
     ++lineno;
@@ -98,24 +172,46 @@ void read_particle_file(const std::string& path, double density, ParticleStore& 
     for (char& c : line)
       if (c == ',' || c == ';')
         c = ' ';
+    const std::string where = name + ":" + std::to_string(lineno);
     std::istringstream ss(line);
     double v[4];
     int n = 0;
     while (n < 4 && ss >> v[n])
       ++n;
-    if (n == 0 && p.size() == 0 && lineno == 1)
-      continue; // header line
+    if (n == 0 && header_allowed)
+    {
+      column = header_columns(line, where); // the first line that is no comment may name them
+      header_allowed = false;
+      continue;
+    }
+    header_allowed = false;
     std::string rest;
     if (n != 4 || (ss >> rest))
-      throw InputError(path + ":" + std::to_string(lineno) +
-                       ": expected four numbers 'x, y, z, r' (m)");
-    check_radius(v[3], path + ":" + std::to_string(lineno));
-    p.add(Vec3(v[0], v[1], v[2]), v[3], density);
+      throw InputError(where + ": expected four numbers 'x, y, z, r' (m)");
+    const Vec3 x(v[column[0]], v[column[1]], v[column[2]]);
+    if (!x.allFinite())
+      throw InputError(where + ": the position must be finite");
+    check_radius(v[column[3]], where);
+    p.add(x, v[column[3]], density);
+    line_of.push_back(lineno);
   }
   if (in.bad())
-    throw InputError(path + ": reading the particle file failed");
+    throw InputError(name + ": reading the particle file failed");
   if (p.size() == 0)
-    throw InputError(path + ": the particle file holds no particle");
+    throw InputError(name + ": the particle file holds no particle");
+  check_file_overlaps(p, line_of, name);
+}
+
+void read_particle_file(const std::string& path, double density, ParticleStore& p)
+{
+  // why: a directory opens as a stream on Linux and then reads as empty
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read the particle file (it is a directory)");
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(path + ": cannot open the particle file");
+  read_particles(in, path, density, p);
 }
 
 void generate_particles(const ParticleSource& s, ParticleStore& p)

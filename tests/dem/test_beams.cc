@@ -62,6 +62,7 @@ TEST(CantileverCase1, TimoshenkoBondMatchesEq29)
   const RunResult r = run(cantilever(BondModel::timoshenko, 10));
   const double expected = cantilever_timoshenko(1e5, 4, 200e9, 0.3, 0.2);
   EXPECT_NEAR(expected, 8.534e-3, 0.0005e-3); // Table 4
+  ASSERT_TRUE(r.deflection);
   report("case 1 TBBM", *r.deflection, expected, r);
   EXPECT_NEAR(*r.deflection / expected, 1.0, 5e-4);
   EXPECT_LT(r.energy_balance_error, 0.01);
@@ -72,6 +73,7 @@ TEST(CantileverCase1, EulerBernoulliBondMatchesBeamTheory)
   const RunResult r = run(cantilever(BondModel::euler_bernoulli, 10));
   const double expected = cantilever_euler_bernoulli(1e5, 4, 200e9, 0.2);
   EXPECT_NEAR(expected, 8.488e-3, 0.0005e-3); // Table 4
+  ASSERT_TRUE(r.deflection);
   report("case 1 EBBM", *r.deflection, expected, r);
   EXPECT_NEAR(*r.deflection / expected, 1.0, 5e-4);
   EXPECT_LT(r.energy_balance_error, 0.01);
@@ -81,6 +83,7 @@ TEST(CantileverCase1, ParallelBondMatchesPublishedValue)
 {
   const RunResult r = run(cantilever(BondModel::parallel_bond, 10));
   const double published = 8.508e-3; // Table 4, PBM with kappa = 2 (1 + nu)
+  ASSERT_TRUE(r.deflection);
   report("case 1 PBM", *r.deflection, published, r);
   EXPECT_NEAR(*r.deflection / published, 1.0, 1e-3);
   EXPECT_LT(r.energy_balance_error, 0.01);
@@ -94,10 +97,12 @@ TEST(CantileverCase3, TimoshenkoIsResolutionIndependentParallelBondConverges)
   for (int bonds = 1; bonds <= 10; ++bonds)
   {
     const RunResult t = run(cantilever(BondModel::timoshenko, bonds));
+    ASSERT_TRUE(t.deflection);
     report("case 3 TBBM bonds=" + std::to_string(bonds), *t.deflection, expected, t);
     EXPECT_NEAR(*t.deflection / expected, 1.0, 1e-3) << bonds << " bonds";
     EXPECT_LT(t.energy_balance_error, 0.01);
     const RunResult p = run(cantilever(BondModel::parallel_bond, bonds));
+    ASSERT_TRUE(p.deflection);
     const double pbm_error = std::abs(*p.deflection - expected) / expected;
     report("case 3 PBM bonds=" + std::to_string(bonds), *p.deflection, expected, p);
     EXPECT_LT(pbm_error, previous_pbm_error) << "PBM error must fall as bonds are added";
@@ -114,6 +119,7 @@ TEST(CantileverCase5, TimoshenkoIsInsensitiveToPolydispersity)
   for (double factor : {1.0, 2.0, 4.0})
   {
     const RunResult r = run(cantilever(BondModel::timoshenko, 2, 4.0, {0.2, 0.2 * factor, 0.2}));
+    ASSERT_TRUE(r.deflection);
     report("case 5 TBBM middle x" + std::to_string(factor), *r.deflection, expected, r);
     EXPECT_NEAR(*r.deflection / expected, 1.0, 1e-3);
     EXPECT_LT(r.energy_balance_error, 0.01);

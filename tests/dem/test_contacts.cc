@@ -376,6 +376,8 @@ TEST(ContactEnergy, PlatenSqueezesASphere)
     top.ramp_time = ramp;
     top.end_time = ramp / 2 + squeeze / speed; // travels exactly `squeeze`
     s.start(m, {floor_wall(), top}, -0.2);
+    const double area = 4 * R * R;
+    s.contacts->measure_platens(0, 1, area);
     double worst = 0, largest = 0;
     while (s.solver->time() < 0.2)
     {
@@ -401,7 +403,31 @@ TEST(ContactEnergy, PlatenSqueezesASphere)
     EXPECT_NEAR(s.contacts->force_on_wall(0).z(), -expected, 1e-3 * expected) << law;
     EXPECT_GT(e.wall_work, 0) << law;
     EXPECT_LT(worst, 0.01) << law;
+    // the platens' stress-strain reading: sigma = F / A, eps = squeeze / L_0
+    const auto& t = s.contacts->platens();
+    EXPECT_NEAR(t.stress, expected / area, 1e-3 * expected / area) << law;
+    EXPECT_NEAR(t.strain, squeeze / (2 * R), 1e-9) << law;
+    EXPECT_GE(t.peak_stress, t.stress) << law;
   }
+}
+
+// A wall with `touch` is laid onto the outermost particle on its side.
+TEST(ContactWalls, TouchingWallsAreLaidOntoTheParticles)
+{
+  ParticleStore p;
+  p.add(Vec3(0.1, 0, 0.3), 0.01, 1000);
+  p.add(Vec3(0.2, 0, 0.25), 0.02, 1000);
+  WallConfig top;
+  top.normal = Vec3(0, 0, -2); // not normalised on purpose
+  top.point = Vec3(5, 5, 1.0);
+  top.touch = true;
+  WallConfig side = top;
+  side.normal = Vec3(1, 0, 0);
+  side.touch = false;
+  std::vector<WallConfig> walls{top, side};
+  place_touching_walls(walls, p);
+  EXPECT_NEAR(walls[0].point.z(), 0.31, 1e-12); // the first sphere's top
+  EXPECT_EQ(walls[1].point, side.point);        // untouched
 }
 
 // Contacts never act between particles joined by an intact bond; once the bond is broken they
