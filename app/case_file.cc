@@ -6,6 +6,9 @@
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
+#ifdef DEMBRIDGE_HAVE_COUPLING
+#include "coupled_parameters.h"
+#endif
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -18,9 +21,11 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
                             const std::vector<std::string>& loads,
                             const std::vector<std::string>& walls)
 {
-  prm.declare_entry("Mode", "dem", dealii::Patterns::Selection("dem|fem"),
+  prm.declare_entry("Mode", "dem", dealii::Patterns::Selection("dem|fem|coupled"),
                     "dem: bonded-particle model (sections Particles ... Output); fem: deal.II "
-                    "continuum (section FEM).");
+                    "continuum (section FEM); coupled: particles in the particle region "
+                    "(Particles/origin, box size) tied to the continuum (FEM) through a "
+                    "handshake band (section Coupling).");
   declare_dem_parameters(prm);
   declare_group_parameters(prm, groups);
   declare_load_parameters(prm, loads);
@@ -28,6 +33,9 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
   declare_verification_parameters(prm);
 #ifdef DEMBRIDGE_HAVE_FEM
   fem::declare_parameters(prm);
+#endif
+#ifdef DEMBRIDGE_HAVE_COUPLING
+  declare_coupling_parameters(prm);
 #endif
 }
 

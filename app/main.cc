@@ -16,6 +16,9 @@
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
+#ifdef DEMBRIDGE_HAVE_COUPLING
+#include "coupled_run.h"
+#endif
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <deal.II/base/mpi.h>
@@ -84,6 +87,14 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     memory_estimate = dembridge::app::check_memory(*prm);
     if (mode == "dem")
       summary = dembridge::app::run_dem_case(*prm, abs_dir);
+    else if (mode == "coupled")
+    {
+#ifdef DEMBRIDGE_HAVE_COUPLING
+      summary = dembridge::app::run_coupled_case(*prm, abs_dir, MPI_COMM_WORLD);
+#else
+      throw std::runtime_error("Mode: this build has no coupling layer (deal.II not found)");
+#endif
+    }
     else
     {
 #ifdef DEMBRIDGE_HAVE_FEM

@@ -24,6 +24,12 @@ public:
   void write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step);
   /// Writes particles.pvd and bonds.pvd listing every snapshot.
   void finish() const;
+  /// (time, file name relative to DIR) of every snapshot so far: particles and bonds.
+  const std::vector<std::pair<double, std::string>>& particle_files() const
+  {
+    return particle_files_;
+  }
+  const std::vector<std::pair<double, std::string>>& bond_files() const { return bond_files_; }
 
 private:
   std::filesystem::path dir_;

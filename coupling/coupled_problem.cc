@@ -390,6 +390,7 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
     rho_[k] += points_[k];
   last_iterations_ = multipliers_.solve(rho_, dt, q_);
 
+  lead_q_ = 0;
   if (root_)
     for (std::size_t k = 0; k < n; ++k)
     {
@@ -400,6 +401,7 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
       {
         const double v1 = v_trial_p_[3 * k + d] + dt * q[d] / p.mass[i];
         work_q_particles_ += q[d] * 0.5 * (v_before_p_[3 * k + d] + v1) * dt;
+        lead_q_ += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
       }
     }
   // the FE nodes take -G^T q
@@ -426,10 +428,12 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
   {
     const bool all = settings_.mass_damping > 0;
     const std::size_t n = all ? p.size() : interface_.size();
+    lead_damping_ = 0;
     for (std::size_t k = 0; k < n; ++k)
     {
       const std::size_t i = all ? k : std::size_t(interface_[k]);
       damping_particles_ -= damping_force_[i].dot(v_before_[i] + p.velocity[i]) * 0.5 * dt;
+      lead_damping_ -= damping_force_[i].dot(p.velocity[i]) * 0.5 * dt;
     }
   }
   if (record) // the tie's actual displacement gap, for the record
@@ -459,11 +463,11 @@ void CoupledProblem::refresh_energies(const bool)
     const auto& e = solver_->energy();
     dem = {e.kinetic,
            e.strain,
-           e.damping + damping_particles_,
+           e.damping + damping_particles_ - lead_damping_,
            e.external,
            e.contact_strain + e.friction + e.contact_damping + e.fracture,
            e.initial,
-           work_q_particles_,
+           work_q_particles_ - lead_q_,
            0.0};
   }
   if (transfer_.parallel())

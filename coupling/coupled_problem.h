@@ -189,6 +189,7 @@ private:
 
   Energies energy_;
   double work_q_particles_ = 0, damping_particles_ = 0;
+  double lead_q_ = 0, lead_damping_ = 0; ///< this step's half-step leads of the two works
   double max_gap_ = 0;
   unsigned int last_iterations_ = 0;
   double coupling_seconds_ = 0;

@@ -22,13 +22,13 @@ Handshake::Handshake(const HandshakeGeometry& g) : g_(g)
   const double scale = (g.domain_hi - g.domain_lo).norm();
   const double tol = 1e-9 * scale;
   if (!((g.domain_hi - g.domain_lo).minCoeff() > 0))
-    throw std::runtime_error("Coupling/domain: the FE domain box is empty (min " +
+    throw std::runtime_error("FEM/Mesh/box upper: the FE domain box is empty (min " +
                              text(g.domain_lo) + ", max " + text(g.domain_hi) + ")");
   if (!((g.particle_hi - g.particle_lo).minCoeff() > 0))
-    throw std::runtime_error("Coupling/particle region: the particle box is empty");
+    throw std::runtime_error("Particles/box size: the particle region is empty");
   for (int d = 0; d < 3; ++d)
     if (g.particle_lo[d] < g.domain_lo[d] - tol || g.particle_hi[d] > g.domain_hi[d] + tol)
-      throw std::runtime_error("Coupling/particle region: the particle box (" +
+      throw std::runtime_error("Particles/origin: the particle region (" +
                                text(g.particle_lo) + " to " + text(g.particle_hi) +
                                ") lies outside the FE domain (" + text(g.domain_lo) + " to " +
                                text(g.domain_hi) + ")");
@@ -57,7 +57,7 @@ Handshake::Handshake(const HandshakeGeometry& g) : g_(g)
                                std::string(1, "xyz"[d]) + " (no particle-only region left)");
   }
   if (!any)
-    throw std::runtime_error("Coupling/particle region: the particle box fills the FE domain "
+    throw std::runtime_error("Particles/box size: the particle region fills the FE domain "
                              "(no face inside it to couple through)");
 }
 

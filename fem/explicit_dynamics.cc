@@ -251,14 +251,19 @@ void ExplicitDynamics::update(const double dt)
     OwnedArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
         v(velocity_half), vt(velocity_trial), fo(outside_force), u(u_owned), up(u_previous),
         vp(velocity_previous);
+    // Works are summed as f^n . (v_{n-1/2} + v_{n+1/2}) / 2 dt; the shadow energy H_n has only
+    // received f^n . v_{n+1/2} dt / 2 less of it (H_{n+1} - H_n = (f^n + f^{n+1}) / 2 .
+    // v_{n+1/2} dt), so each work is reported without that half-step lead.
+    double lead_boundary = 0;
     for (const auto& d : driven) // u_{n+1} = ramp(t_{n+1}) g: the reaction is what that takes
     {
       const double vd = (drive_ramps[d.ramp](current_time + dt) * d.target - u[d.local]) / dt;
       const double reaction = m[d.local] * (vd - v[d.local]) / dt - f[d.local] - fo[d.local];
-      energy.boundary_work += reaction * 0.5 * (v[d.local] + vd) * dt;
+      boundary_work_summed += reaction * 0.5 * (v[d.local] + vd) * dt;
+      lead_boundary += reaction * 0.5 * vd * dt;
       vt[d.local] = vd;
     }
-    double sums[6] = {0, 0, 0, 0, 0, 0};
+    double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     for (std::size_t i = 0; i < n; ++i)
     {
       const double v0 = v[i], v1 = vt[i], mean = 0.5 * (v0 + v1);
@@ -268,19 +273,26 @@ void ExplicitDynamics::update(const double dt)
       sums[3] -= fe_[i] * u[i];
       sums[4] += mass_damping * m[i] * v0 * mean * dt;
       sums[5] += (fa[i] + fo[i]) * mean * dt;
+      sums[6] += mass_damping * m[i] * v0 * v1 * 0.5 * dt; // leads (see above)
+      sums[7] += (fa[i] + fo[i]) * v1 * 0.5 * dt;
       up[i] = u[i];
       vp[i] = v0;
       v[i] = v1;
       u[i] += dt * v1;
     }
-    Utilities::MPI::sum(ArrayView<const double>(sums, 6), mpi_communicator,
-                        ArrayView<double>(sums, 6));
+    lead_boundary = Utilities::MPI::sum(lead_boundary, mpi_communicator);
+    boundary_work_summed_all = Utilities::MPI::sum(boundary_work_summed, mpi_communicator);
+    Utilities::MPI::sum(ArrayView<const double>(sums, 8), mpi_communicator,
+                        ArrayView<double>(sums, 8));
     energy.kinetic_shadow = sums[0];
     energy.kinetic = sums[1];
     energy.strain = sums[2];
     energy.load_potential = sums[3];
-    energy.damping += sums[4];
-    energy.outside_work += sums[5];
+    damping_summed += sums[4];
+    outside_work_summed += sums[5];
+    energy.damping = damping_summed - sums[6];
+    energy.outside_work = outside_work_summed - sums[7];
+    energy.boundary_work = boundary_work_summed_all - lead_boundary;
   }
   if (has_hanging_nodes)
     constraints.distribute(u_owned);

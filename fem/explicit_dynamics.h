@@ -163,6 +163,10 @@ private:
   /// u_n and v_{n-1/2} of the last completed step n (energy_in).
   LA::MPI::Vector u_previous, velocity_previous;
 
+  /// The works as summed step by step (trapezoidal, with the half-step lead, see update());
+  /// boundary_work_summed is this rank's share.
+  double boundary_work_summed = 0, boundary_work_summed_all = 0, damping_summed = 0,
+         outside_work_summed = 0;
   double critical_time_step = 0;
   double current_time = 0;
   unsigned int step_number = 0;

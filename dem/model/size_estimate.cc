@@ -58,6 +58,7 @@ double lattice_bonds_per_particle(const ParticleSource& source, double multiplie
   ParticleSource block = source;
   block.origin = Vec3::Zero();
   block.save_file.clear();
+  block.remove_box_min = block.remove_box_max = Vec3::Zero(); // no notch in the sample block
   block.box_size = Vec3::Constant((4 * multiplier + 6) * source.radius);
   ParticleStore p;
   generate_particles(block, p);

@@ -1,0 +1,163 @@
+#include "coupled_parameters.h"
+#include "dem_parameters.h"
+#include "fem/parameters.h"
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace dembridge::app
+{
+using dealii::ParameterHandler;
+using dealii::Patterns::Bool;
+using dealii::Patterns::Double;
+using dealii::Patterns::Integer;
+using dealii::Patterns::List;
+using dealii::Patterns::Selection;
+
+void declare_coupling_parameters(ParameterHandler& prm)
+{
+  prm.enter_subsection("Coupling");
+  prm.declare_entry("band width", "0", Double(0),
+                    "Width L of the handshake band (m), inside the particle region along its "
+                    "faces that lie inside the FE domain; at least two particle diameters. "
+                    "0: three particle diameters.");
+  prm.declare_entry("weight floor", "0.1", Double(0, 0.5),
+                    "Smallest mass weight of either side in the band (0 < f < 0.5): keeps the "
+                    "explicit step where one side's mass would vanish.");
+  prm.declare_entry("element size", "0.01", List(Double(0), 1, 3),
+                    "FE cell size outside the band (m): one value or one per axis x, y, z. The "
+                    "FE mesh is graded so that cell faces lie on the band's planes.");
+  prm.declare_entry("band element size", "0", Double(0),
+                    "FE cell size across the band (m); 0: the smallest element size.");
+  prm.declare_entry("continuum tensor", "closed form",
+                    Selection("closed form|periodic|measured|file"),
+                    "The continuum's elasticity tensor, from the particle region's packing: "
+                    "closed form (simple cubic lattice: C11 = k_n/d, C44 = k_s/(2d)), periodic "
+                    "(one periodic cell of a cubic, hcp or fcc lattice), measured (six uniform "
+                    "strains on the packing itself; random packings), file (Coupling/tensor "
+                    "file).");
+  prm.declare_entry("tensor file", "", dealii::Patterns::Anything(),
+                    "elasticity.json written by `dembridge elasticity` (its stiffness_tensor), "
+                    "relative to the case file's folder.");
+  prm.declare_entry("tying", "particle", Selection("particle|node"),
+                    "particle: each interface particle's velocity tied to the FE velocity at "
+                    "its position (bridging domain); node: FE nodes slaved to the particles "
+                    "(master-slave).");
+  prm.declare_entry("constraint solve", "exact", Selection("exact|lumped"),
+                    "exact: the multipliers by CG on G M^-1 G^T + diag(1/m_p); lumped: its "
+                    "row-sum diagonal (local, approximate).");
+  prm.declare_entry("mass damping", "0", Double(0),
+                    "Mass-proportional damping c (1/s) on both sides (-c M v, -c m v): "
+                    "quasi-static runs; its dissipation is booked.");
+  prm.declare_entry("fine scale damping", "0", Double(0),
+                    "Damping (1/s) of the part of a band particle's motion the FE field cannot "
+                    "carry, scaled by 1 - alpha (node tying only).");
+  prm.declare_entry("ramp time", "0", Double(0),
+                    "Driven FE supports (FEM/Boundary conditions with a non-zero value) reach "
+                    "their value at this time (s); 0: at once.");
+  prm.declare_entry("ramp profile", "smooth", Selection("smooth|linear"),
+                    "Ramp of the driven supports: smooth 3 s^2 - 2 s^3 (no shock) or linear s.");
+  prm.declare_entry("rest tolerance", "0", Double(0, 1),
+                    "Stop once at rest after the last ramp: the kinetic share of both sides "
+                    "K / (K + U) below this at five consecutive records; 0: run to the end "
+                    "time.");
+  prm.enter_subsection("Pulse");
+  prm.declare_entry("enabled", "false", Bool(),
+                    "Start from a longitudinal pulse A exp(-(s/(e lambda))^2) cos(2 pi s / "
+                    "lambda), s the distance from its centre along the axis (wave runs).");
+  prm.declare_entry("axis", "x", Selection("x|y|z"), "Direction of the bar.");
+  prm.declare_entry("centre", "0", Double(), "Centre of the pulse on the axis (m).");
+  prm.declare_entry("wavelength", "0.1", Double(0), "Dominant wavelength lambda (m).");
+  prm.declare_entry("amplitude", "1e-6", Double(0), "A (m).");
+  prm.declare_entry("envelope", "1", Double(0), "e: Gaussian width in wavelengths.");
+  prm.declare_entry("direction", "1", Integer(-1, 1),
+                    "+1 or -1: the direction it travels along the axis.");
+  prm.leave_subsection();
+  prm.leave_subsection();
+}
+
+coupling::CoupledCase parse_coupled_case(ParameterHandler& prm)
+{
+  coupling::CoupledCase c;
+  c.particles = parse_dem_case(prm);
+  if (c.particles.run.static_solver)
+    throw dem::InputError("Simulation/solver: a coupled run is explicit (solver = explicit)");
+  c.continuum = fem::parse_parameters(prm);
+  c.continuum.problem = fem::ProblemKind::explicit_dynamics;
+
+  auto& s = c.settings;
+  prm.enter_subsection("Coupling");
+  const double radius = c.particles.particles.radius;
+  s.geometry.band_width = prm.get_double("band width");
+  if (s.geometry.band_width == 0)
+    s.geometry.band_width = 6 * radius;
+  s.geometry.weight_floor = prm.get_double("weight floor");
+  {
+    const auto sizes = dealii::Utilities::split_string_list(prm.get("element size"));
+    for (int d = 0; d < 3; ++d)
+      s.element_size[d] = dealii::Utilities::string_to_double(sizes[sizes.size() == 1 ? 0 : d]);
+    if (sizes.size() == 2)
+      throw dem::InputError("Coupling/element size: give one value or three (x, y, z)");
+  }
+  s.band_element_size = prm.get_double("band element size");
+  if (s.band_element_size == 0)
+    s.band_element_size = s.element_size.minCoeff();
+  if (!(s.element_size.minCoeff() > 0))
+    throw dem::InputError("Coupling/element size: must be positive");
+  const std::string tensor = prm.get("continuum tensor");
+  c.tensor = tensor == "closed form" ? coupling::TensorSource::closed_form
+             : tensor == "periodic"  ? coupling::TensorSource::periodic
+             : tensor == "measured"  ? coupling::TensorSource::measured
+                                     : coupling::TensorSource::file;
+  c.tensor_file = prm.get("tensor file");
+  if (c.tensor == coupling::TensorSource::file && c.tensor_file.empty())
+    throw dem::InputError("Coupling/tensor file: continuum tensor = file needs an elasticity.json");
+  s.tying = prm.get("tying") == "node" ? coupling::Tying::node : coupling::Tying::particle;
+  s.solve = prm.get("constraint solve") == "lumped" ? coupling::ConstraintSolve::lumped
+                                                    : coupling::ConstraintSolve::exact;
+  s.mass_damping = prm.get_double("mass damping");
+  s.fine_scale_damping = prm.get_double("fine scale damping");
+  if (s.fine_scale_damping > 0 && s.tying != coupling::Tying::node)
+    throw dem::InputError("Coupling/fine scale damping: acts with node tying only (tying = node)");
+  c.ramp_time = prm.get_double("ramp time");
+  c.smooth_ramp = prm.get("ramp profile") == "smooth";
+  prm.enter_subsection("Pulse");
+  c.pulse.enabled = prm.get_bool("enabled");
+  c.pulse.axis = int(std::string("xyz").find(prm.get("axis")));
+  c.pulse.centre = prm.get_double("centre");
+  c.pulse.wavelength = prm.get_double("wavelength");
+  c.pulse.amplitude = prm.get_double("amplitude");
+  c.pulse.envelope = prm.get_double("envelope");
+  c.pulse.direction = prm.get_integer("direction");
+  if (c.pulse.enabled && c.pulse.direction == 0)
+    throw dem::InputError("Coupling/Pulse/direction: +1 or -1");
+  if (c.pulse.enabled && !(c.pulse.wavelength > 0))
+    throw dem::InputError("Coupling/Pulse/wavelength: must be positive");
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  // the common step: Simulation/time step (auto or a value) and its safety factor
+  s.time_step = c.particles.run.time_step;
+  s.time_step_safety = c.particles.run.safety;
+  return c;
+}
+
+coupling::CoupledRunSettings parse_coupled_run_settings(ParameterHandler& prm,
+                                                        const coupling::CoupledCase& c)
+{
+  coupling::CoupledRunSettings r;
+  const OutputSettings out = parse_output_settings(prm);
+  r.end_time = c.particles.run.end_time;
+  r.max_steps = c.particles.run.max_steps;
+  r.record_interval = out.history_interval;
+  r.snapshot_interval = out.snapshot_interval;
+  r.rest_tolerance = prm.get_double({"Coupling"}, "rest tolerance");
+  r.rest_after = coupling::last_ramp_end(c);
+  r.pulse_side = coupling::pulse_side(c);
+  return r;
+}
+} // namespace dembridge::app

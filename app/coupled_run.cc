@@ -1,0 +1,315 @@
+#include "coupled_run.h"
+#include "coupled_parameters.h"
+#include "dem/measurements/measurements.h"
+#include "dem_parameters.h"
+#include "coupling/measurements.h"
+#include "particle_vtu.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+
+namespace dembridge::app
+{
+namespace
+{
+using coupling::CoupledProblem;
+
+nlohmann::json to_json(const dem::Vec3& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
+
+/// history.csv, the ParaView series of both sides and progress lines.
+class CoupledObserver : public coupling::CoupledRunObserver
+{
+public:
+  CoupledObserver(const std::filesystem::path& dir, const OutputSettings& out,
+                  CoupledProblem& problem, const std::vector<fem::PointProbe>& probes,
+                  bool root)
+      : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir)
+  {
+    if (!root_)
+      return;
+    history_.open(dir / "history.csv.part");
+    if (!history_)
+      throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
+    history_ << "step,time,dem_kinetic_energy,dem_strain_energy,dem_damping_energy,"
+                "dem_external_work,dem_other_energy,fe_kinetic_energy,fe_strain_energy,"
+                "fe_damping_energy,fe_boundary_work,multiplier_work_particles,"
+                "multiplier_work_fe,energy_balance_error,max_tie_gap";
+    for (const auto& g : problem.model().groups)
+      for (const char* q : {"ux", "uy", "uz"})
+        history_ << ',' << g.name << '_' << q;
+    for (std::size_t k = 0; k < probes_.size(); ++k)
+      for (const char* q : {"ux", "uy", "uz"})
+        history_ << ",fe_probe" << k << '_' << q;
+    history_ << '\n' << std::setprecision(10);
+  }
+
+  void on_record(const CoupledProblem& problem) override
+  {
+    std::vector<dealii::Tensor<1, 3>> u;
+    for (const auto& p : probes_) // collective
+      u.push_back(const_cast<CoupledProblem&>(problem).continuum().probe_vector(p));
+    if (!root_)
+      return;
+    const auto& e = problem.energies();
+    history_ << problem.steps() << ',' << problem.time() << ',' << e.dem_kinetic << ','
+             << e.dem_strain << ',' << e.dem_damping << ',' << e.dem_external << ','
+             << e.dem_other << ',' << e.fe_kinetic << ',' << e.fe_strain << ',' << e.fe_damping
+             << ',' << e.fe_boundary_work << ',' << e.multiplier_work_particles << ','
+             << e.multiplier_work_fe << ',' << e.balance_error() << ',' << problem.max_tie_gap();
+    auto& model = const_cast<CoupledProblem&>(problem).model();
+    for (const auto& g : model.groups)
+    {
+      const dem::Vec3 d = dem::mean_displacement(model.particles, g);
+      history_ << ',' << d.x() << ',' << d.y() << ',' << d.z();
+    }
+    for (const auto& v : u)
+      history_ << ',' << v[0] << ',' << v[1] << ',' << v[2];
+    history_ << '\n';
+  }
+
+  void on_snapshot(CoupledProblem& problem) override
+  {
+    if (!write_vtu_)
+      return;
+    const std::string fe_file = problem.output_results(dir_, cycle_++); // collective
+    if (!root_)
+      return;
+    vtu_.write(problem.model().particles, problem.model().bonds, problem.time(), problem.steps());
+    fe_files_.emplace_back(problem.time(), fe_file);
+  }
+
+  void on_progress(const CoupledProblem& problem, double fraction, double rate,
+                   double eta) override
+  {
+    if (!root_)
+      return;
+    std::printf("[%5.1f%%] step %ld, t = %.4g s, %.3g steps/s, ETA %.0f s, energy balance "
+                "%.2e, coupling %.0f %% of the time\n",
+                100 * fraction, problem.steps(), problem.time(), rate, eta,
+                problem.energies().balance_error(),
+                100 * problem.coupling_seconds() /
+                    std::max(1e-12, double(problem.steps()) / rate));
+    std::fflush(stdout);
+  }
+
+  /// Closes history.csv and writes particles.pvd, bonds.pvd (fem.pvd is the FE side's) and
+  /// coupled.pvd: every part at every snapshot time, for ParaView to open as one.
+  void finish()
+  {
+    if (!root_)
+      return;
+    history_.close();
+    std::filesystem::rename(dir_ / "history.csv.part", dir_ / "history.csv");
+    if (!write_vtu_)
+      return;
+    vtu_.finish();
+    std::ofstream pvd(dir_ / "coupled.pvd");
+    pvd << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n"
+        << std::setprecision(12);
+    const auto& particles = vtu_.particle_files();
+    const auto& bonds = vtu_.bond_files();
+    for (std::size_t k = 0; k < fe_files_.size(); ++k)
+    {
+      const double t = fe_files_[k].first;
+      auto entry = [&](int part, const std::string& file, const char* name)
+      {
+        pvd << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"" << part << "\" name=\""
+            << name << "\" file=\"" << file << "\"/>\n";
+      };
+      if (k < particles.size())
+        entry(0, particles[k].second, "particles");
+      if (k < bonds.size())
+        entry(1, bonds[k].second, "bonds");
+      entry(2, fe_files_[k].second, "continuum");
+    }
+    pvd << "  </Collection>\n</VTKFile>\n";
+    if (!pvd)
+      throw std::runtime_error((dir_ / "coupled.pvd").string() + ": write failed");
+  }
+
+private:
+  std::filesystem::path dir_;
+  bool write_vtu_;
+  const std::vector<fem::PointProbe>& probes_;
+  bool root_;
+  ParticleVtuSeries vtu_;
+  std::ofstream history_;
+  unsigned int cycle_ = 0;
+  std::vector<std::pair<double, std::string>> fe_files_;
+};
+
+nlohmann::json energies_json(const CoupledProblem::Energies& e)
+{
+  return {{"dem_kinetic", e.dem_kinetic},
+          {"dem_strain", e.dem_strain},
+          {"dem_damping", e.dem_damping},
+          {"dem_external_work", e.dem_external},
+          {"dem_contacts_and_fracture", e.dem_other},
+          {"dem_total", e.dem_total()},
+          {"fe_kinetic", e.fe_kinetic},
+          {"fe_strain", e.fe_strain},
+          {"fe_damping", e.fe_damping},
+          {"fe_boundary_work", e.fe_boundary_work},
+          {"fe_total", e.fe_total()},
+          {"multiplier_work_particles", e.multiplier_work_particles},
+          {"multiplier_work_fe", e.multiplier_work_fe},
+          {"multiplier_work", e.multiplier_work()},
+          {"initial", e.initial}};
+}
+} // namespace
+
+nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
+                                MPI_Comm comm)
+{
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  coupling::CoupledCase c = parse_coupled_case(prm);
+  const OutputSettings out = parse_output_settings(prm);
+  auto problem = coupling::make_coupled_problem(c, comm);
+  const coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
+  CoupledProblem& p = *problem;
+  const auto& fe = p.continuum();
+  if (root)
+  {
+    std::printf("coupled: %zu particles (%zu tied in the band), %zu bonds; continuum %u cells, "
+                "%llu DoFs; time step %.4g s (particle region's own %.4g s, continuum %.4g s)\n",
+                p.n_particles(), p.n_interface_particles(), p.model().bonds.size(),
+                unsigned(fe.n_cells()), (unsigned long long)fe.n_dofs(), p.time_step(),
+                p.particle_time_step(), p.fe_time_step());
+    std::fflush(stdout);
+  }
+  std::vector<fem::PointProbe> probes;
+  for (const auto& x : c.continuum.deflection_points)
+    probes.push_back(p.continuum().make_probe(x, "FEM/Measurements/deflection points"));
+
+  CoupledObserver observer(dir, out, p, probes, root);
+  const coupling::CoupledRunResult r = coupling::run_coupled(p, run, observer);
+  observer.finish();
+
+  nlohmann::json j;
+  j["mode"] = "coupled";
+  j["n_particles"] = p.n_particles();
+  j["n_interface_particles"] = p.n_interface_particles();
+  j["n_fe_dofs"] = fe.n_dofs();
+  j["n_fe_cells"] = fe.n_cells();
+  j["time_step"] = p.time_step();
+  j["particle_time_step"] = p.particle_time_step();
+  j["fe_time_step"] = p.fe_time_step();
+  // the coupled run's stable step over the particle region's own (issue 9: at least 0.9)
+  j["stable_time_step_ratio"] =
+      std::min(p.particle_time_step(), p.fe_time_step()) / p.particle_time_step();
+  j["steps"] = r.steps;
+  j["simulated_time"] = r.time;
+  j["stop_reason"] = r.stop_reason;
+  j["solver_seconds"] = r.wall_seconds;
+  j["coupling_seconds"] = r.coupling_seconds;
+  j["coupling_share"] = r.wall_seconds > 0 ? r.coupling_seconds / r.wall_seconds : 0.0;
+  j["energy"] = energies_json(r.energies);
+  j["energy_balance_error"] = r.energies.balance_error();
+  j["energy_balance_error_max"] = r.max_balance_error;
+  j["max_tie_gap"] = r.max_tie_gap;
+  j["band_width"] = c.settings.geometry.band_width;
+  j["weight_floor"] = c.settings.geometry.weight_floor;
+  {
+    nlohmann::json C = nlohmann::json::array();
+    for (int i = 0; i < 6; ++i)
+    {
+      nlohmann::json row = nlohmann::json::array();
+      for (int k = 0; k < 6; ++k)
+        row.push_back(c.settings.tensor[6 * i + k]);
+      C.push_back(row);
+    }
+    j["continuum_tensor"] = C;
+  }
+  if (r.reflected_energy_ratio >= 0)
+  {
+    j["reflected_energy_ratio"] = r.reflected_energy_ratio;
+    j["transmitted_energy_ratio"] = r.transmitted_energy_ratio;
+  }
+  // FE probes (collective) and the particle groups (rank 0, broadcast)
+  if (!probes.empty())
+  {
+    nlohmann::json u = nlohmann::json::array();
+    double mean = 0;
+    dealii::Tensor<1, 3> direction;
+    for (int d = 0; d < 3; ++d)
+      direction[d] = c.continuum.deflection_direction[d];
+    for (const auto& probe : probes)
+    {
+      const auto v = p.continuum().probe_vector(probe);
+      u.push_back({v[0], v[1], v[2]});
+      mean += v * direction / double(probes.size());
+    }
+    j["fe_probe_displacements"] = u;
+    j["fe_" + c.continuum.deflection_name] = mean;
+  }
+  // FE reaction and, with a loaded boundary, E by thesis eq. 64 (as a FEM run: fem_case.cc)
+  const auto& fp = c.continuum;
+  if (!fp.reaction_boundary.empty())
+  {
+    auto& cont = p.continuum();
+    const auto id = fem::find_boundary(cont.boundary_names(), fp.reaction_boundary,
+                                       "FEM/Measurements/reaction boundary");
+    const dealii::Tensor<1, 3> force = cont.reaction(id);
+    j["reaction_force"] = force * fp.reaction_direction;
+    j["reaction_force_vector"] = {force[0], force[1], force[2]};
+    if (!fp.loaded_boundary.empty())
+    {
+      const auto loaded = fem::find_boundary(cont.boundary_names(), fp.loaded_boundary,
+                                             "FEM/Measurements/loaded boundary");
+      const auto fixed_means = cont.boundary_means(id);
+      const auto loaded_means = cont.boundary_means(loaded);
+      const dealii::Tensor<1, 3> e = fp.reaction_direction;
+      const double length = std::abs((loaded_means.centroid - fixed_means.centroid) * e);
+      const double elongation =
+          (loaded_means.mean_displacement - fixed_means.mean_displacement) * e;
+      j["area"] = fixed_means.area;
+      j["gauge_length"] = length;
+      j["elongation"] = elongation;
+      j["axial_strain"] = elongation / length;
+      j["youngs_modulus"] = -(force * e) / fixed_means.area * length / elongation;
+    }
+  }
+  std::string groups_text;
+  if (root)
+  {
+    nlohmann::json groups;
+    const auto& model = p.model();
+    for (const auto& g : model.groups)
+    {
+      groups[g.name]["n_particles"] = g.members.size();
+      groups[g.name]["mean_displacement"] = to_json(dem::mean_displacement(model.particles, g));
+    }
+    nlohmann::json measured;
+    const auto& m = c.particles.measure;
+    if (!m.deflection_group.empty())
+    {
+      const auto& g = model.groups[model.group_index(m.deflection_group,
+                                                     "Measurements/deflection group")];
+      const dem::Vec3 u = dem::mean_displacement(model.particles, g);
+      measured[m.deflection_name] = u.dot(m.deflection_direction.normalized());
+      measured[m.deflection_name + "_vector"] = to_json(u);
+    }
+    measured["groups"] = groups;
+    // the particle-only region's own strain: least-squares affine fit of its displacements
+    const auto& h = p.handshake();
+    const auto eps = coupling::fit_particle_strain(model.particles, [&](const dem::Vec3& X)
+                                                   { return h.in_particle_only(X); });
+    measured["particle_strain"] = {{eps[0], eps[1], eps[2]},
+                                   {eps[3], eps[4], eps[5]},
+                                   {eps[6], eps[7], eps[8]}};
+    measured["n_bonds"] = model.bonds.size();
+    groups_text = measured.dump();
+  }
+  groups_text = dealii::Utilities::MPI::broadcast(comm, groups_text, 0);
+  j.update(nlohmann::json::parse(groups_text));
+  return j;
+}
+} // namespace dembridge::app
