@@ -82,6 +82,11 @@ void ContactOutput::summary(nlohmann::json& j, double time) const
     j["final_strain"] = t.strain;
     j["platen_area"] = t.area;
     j["platen_distance"] = t.length;
+    if (const double ref = c.material().reference_tensile_strength; ref > 0)
+    {
+      j["reference_tensile_strength"] = ref;
+      j["compressive_to_tensile_strength_ratio"] = t.peak_stress / ref;
+    }
   }
 }
 } // namespace dembridge::app

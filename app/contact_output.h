@@ -2,7 +2,8 @@
 // What the contacts and walls of a DEM run write (dem/contacts/): history.csv columns (active
 // contacts; per wall its position along its normal and the force the particles exert on it) and
 // summary.json keys (n_contacts, per-wall force and displacement, the first contact's duration,
-// overlap, force and restitution when Contacts/monitor is on, the platens' stress-strain peak).
+// overlap, force and restitution when Contacts/monitor is on, the platens' stress-strain peak
+// and, given Contacts/reference tensile strength, the ratio of compressive to tensile strength).
 // Nothing is written for a run without contacts.
 #include "dem/contacts/contact_forces.h"
 #include "dem/model/model.h"

@@ -61,6 +61,11 @@ void declare_contact_parameters(ParameterHandler& prm)
                     "mean force over the specimen's cross-section and their approach over their "
                     "initial distance give peak_stress and strain_at_peak (compression "
                     "positive).");
+  prm.declare_entry("reference tensile strength", "0", Double(),
+                    "Peak stress (Pa) of a tension test of the same specimen and "
+                    "micro-parameters (its summary's peak_stress); with platens, summary.json "
+                    "reports compressive_to_tensile_strength_ratio = peak_stress / this "
+                    "(PFC's parallel bonds: about 7, granite: about 20). 0: none.");
   prm.leave_subsection();
 
   prm.enter_subsection("Walls");
@@ -107,6 +112,7 @@ void parse_contact_parameters(ParameterHandler& prm, dem::CaseConfig& c)
   k.skin = prm.get_double("skin");
   k.monitor = prm.get_bool("monitor");
   k.platens = split_names(prm.get("platens"));
+  k.reference_tensile_strength = prm.get_double("reference tensile strength");
   prm.leave_subsection();
   k.validate();
 

@@ -56,6 +56,11 @@ void ContactConfig::validate() const
     throw InputError("Contacts/rolling stiffness: must not be negative (0: 2.25 k_n mu_r^2 R*^2)");
   if (!(skin >= 0) || !std::isfinite(skin))
     throw InputError("Contacts/skin: must not be negative (0: a fifth of the smallest radius)");
+  if (!(reference_tensile_strength >= 0) || !std::isfinite(reference_tensile_strength))
+    throw InputError("Contacts/reference tensile strength: must not be negative (0: none)");
+  if (reference_tensile_strength > 0 && platens.empty())
+    throw InputError("Contacts/reference tensile strength: the strength ratio needs a platen "
+                     "test (Contacts/platens)");
 }
 
 void WallConfig::validate() const

@@ -48,6 +48,9 @@ struct ContactConfig
   /// Two walls (lower, upper) that load a specimen between them: their forces and approach give
   /// the stress-strain curve (ContactForces::platens); empty: none.
   std::vector<std::string> platens;
+  /// Peak stress of a tension test of the same specimen and micro-parameters, Pa; > 0: the
+  /// platen test reports the ratio of compressive to tensile strength against it; 0: none.
+  double reference_tensile_strength = 0;
 
   bool enabled() const { return model != ContactModel::none; }
   /// Throws InputError naming Contacts/<key> if a value is missing or non-physical.

@@ -5,9 +5,20 @@
                                                            (relative)
     check_failure.py change A.json B.json KEY TOL           |B[KEY] / A[KEY] - 1| < TOL
     check_failure.py differ A.json B.json KEY               the values differ (seed scatter)
+    check_failure.py scatter KEY A.json B.json...           the values over runs (seeds): mean,
+                                                           standard deviation, range; all differ
     check_failure.py identical DIR_A DIR_B                  same summary.json (but for the run's
                                                            wall times and provenance), same
                                                            history.csv and cracks.csv, byte for byte
+    check_failure.py softening HISTORY.csv STRESS STRAIN
+                                                           a peak inside the run, then a softening
+                                                           branch: at least 5 records between 95 %
+                                                           and 25 % of the peak at rising strain,
+                                                           and a final stress below 20 % of it
+    check_failure.py with_value A.json KEY PARAM -- COMMAND...
+                                                           runs COMMAND with --set PARAM=A[KEY]
+                                                           added (a run that takes a number from
+                                                           another run's summary), its exit code
     check_failure.py notch_crack CRACKS.csv TIP_X TIP_Z LOAD_Z DIAMETER
                                                            the first broken bond within two
                                                            diameters of the notch tip; the crack
@@ -18,6 +29,7 @@ Prints every number it judges; exit 1 on any failed check. Plain python3 (json, 
 import csv
 import json
 import math
+import subprocess
 import sys
 from pathlib import Path
 
@@ -69,6 +81,15 @@ def main(argv):
         a, b, key = argv[2], argv[3], argv[4]
         va, vb = value(a, key), value(b, key)
         check(va != vb, f"{key}: {va:.6g} vs {vb:.6g} (difference {vb / va - 1:+.3%})")
+    elif cmd == "scatter":
+        key, paths = argv[2], argv[3:]
+        vs = [value(p, key) for p in paths]
+        mean = sum(vs) / len(vs)
+        std = math.sqrt(sum((v - mean) ** 2 for v in vs) / (len(vs) - 1))
+        print(f"{key} over {len(vs)} runs: " + ", ".join(f"{v:.6g}" for v in vs))
+        check(len(set(vs)) == len(vs),
+              f"{key}: mean {mean:.6g}, standard deviation {std:.4g} ({std / mean:.2%}), "
+              f"range {min(vs):.6g}-{max(vs):.6g} ({(max(vs) - min(vs)) / mean:.2%}); all differ")
     elif cmd == "identical":
         da, db = Path(argv[2]), Path(argv[3])
         sa = physics(json.load(open(da / "summary.json")))
@@ -79,6 +100,32 @@ def main(argv):
         for name in ("history.csv", "cracks.csv"):
             same = (da / name).read_bytes() == (db / name).read_bytes()
             check(same, f"{name} byte for byte ({(da / name).stat().st_size} bytes)")
+    elif cmd == "softening":
+        path, stress_key, strain_key = argv[2], argv[3], argv[4]
+        rows = list(csv.DictReader(open(path)))
+        stress = [float(r[stress_key]) for r in rows]
+        strain = [float(r[strain_key]) for r in rows]
+        k = max(range(len(stress)), key=lambda n: stress[n])
+        peak = stress[k]
+        check(0 < k < len(rows) - 1 and peak > 0,
+              f"peak {peak:.6g} Pa at strain {strain[k]:.4g}, record {k} of {len(rows)}")
+        # the branch: records after the peak between 95 % and 25 % of it, the strain rising
+        branch = [n for n in range(k + 1, len(rows)) if 0.25 * peak <= stress[n] <= 0.95 * peak]
+        rising = all(strain[b] > strain[a] for a, b in zip(range(k, len(rows) - 1),
+                                                           range(k + 1, len(rows))))
+        span = (strain[branch[-1]] - strain[k]) if branch else 0.0
+        check(len(branch) >= 5 and rising,
+              f"softening branch: {len(branch)} records from 95 % to 25 % of the peak over a "
+              f"strain of {span:.3g} ({span / strain[k]:.1%} of the strain at the peak; "
+              f"limit 5 records), strain rising: {rising}")
+        check(stress[-1] < 0.2 * peak, f"final stress {stress[-1]:.4g} Pa = "
+              f"{stress[-1] / peak:.1%} of the peak (limit 20 %)")
+    elif cmd == "with_value":
+        a, key, param = argv[2], argv[3], argv[4]
+        command = argv[argv.index("--") + 1:]
+        v = value(a, key)
+        print(f"{param} = {v!r} ({key} of {a})", flush=True)
+        return subprocess.call(command + ["--set", f"{param}={v!r}"])
     elif cmd == "notch_crack":
         path = argv[2]
         tip_x, tip_z, load_z, d = (float(v) for v in argv[3:7])
