@@ -3,6 +3,7 @@
 #include "dem/measurements/measurements.h"
 #include "dem_parameters.h"
 #include "coupling/measurements.h"
+#include "crack_output.h"
 #include "particle_vtu.h"
 
 #include <deal.II/base/mpi.h>
@@ -29,7 +30,8 @@ public:
   CoupledObserver(const std::filesystem::path& dir, const OutputSettings& out,
                   CoupledProblem& problem, const std::vector<fem::PointProbe>& probes,
                   bool root)
-      : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir)
+      : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir),
+        cracks_(dir, out.write_vtu)
   {
     if (!root_)
       return;
@@ -39,7 +41,8 @@ public:
     history_ << "step,time,dem_kinetic_energy,dem_strain_energy,dem_damping_energy,"
                 "dem_external_work,dem_other_energy,fe_kinetic_energy,fe_strain_energy,"
                 "fe_damping_energy,fe_boundary_work,multiplier_work_particles,"
-                "multiplier_work_fe,energy_balance_error,max_tie_gap";
+                "multiplier_work_fe,energy_balance_error,max_tie_gap,n_broken_bonds,"
+                "band_failure_index";
     for (const auto& g : problem.model().groups)
       for (const char* q : {"ux", "uy", "uz"})
         history_ << ',' << g.name << '_' << q;
@@ -61,7 +64,10 @@ public:
              << e.dem_strain << ',' << e.dem_damping << ',' << e.dem_external << ','
              << e.dem_other << ',' << e.fe_kinetic << ',' << e.fe_strain << ',' << e.fe_damping
              << ',' << e.fe_boundary_work << ',' << e.multiplier_work_particles << ','
-             << e.multiplier_work_fe << ',' << e.balance_error() << ',' << problem.max_tie_gap();
+             << e.multiplier_work_fe << ',' << e.balance_error() << ',' << problem.max_tie_gap()
+             << ',' << problem.particle_solver()->n_broken_bonds() << ','
+             << problem.band_damage().max_failure_index;
+    cracks_.update(*problem.particle_solver());
     auto& model = const_cast<CoupledProblem&>(problem).model();
     for (const auto& g : model.groups)
     {
@@ -82,6 +88,8 @@ public:
       return;
     vtu_.write(problem.model().particles, problem.model().bonds, problem.time(), problem.steps());
     fe_files_.emplace_back(problem.time(), fe_file);
+    cracks_.update(*problem.particle_solver());
+    cracks_.snapshot(problem.time(), problem.steps());
   }
 
   void on_progress(const CoupledProblem& problem, double fraction, double rate,
@@ -100,12 +108,15 @@ public:
 
   /// Closes history.csv and writes particles.pvd, bonds.pvd (fem.pvd is the FE side's) and
   /// coupled.pvd: every part at every snapshot time, for ParaView to open as one.
+  const std::vector<dem::CrackEvent>& cracks() const { return cracks_.cracks(); }
+
   void finish()
   {
     if (!root_)
       return;
     history_.close();
     std::filesystem::rename(dir_ / "history.csv.part", dir_ / "history.csv");
+    cracks_.finish();
     if (!write_vtu_)
       return;
     vtu_.finish();
@@ -141,6 +152,7 @@ private:
   const std::vector<fem::PointProbe>& probes_;
   bool root_;
   ParticleVtuSeries vtu_;
+  CrackOutput cracks_;
   std::ofstream history_;
   unsigned int cycle_ = 0;
   std::vector<std::pair<double, std::string>> fe_files_;
@@ -215,6 +227,14 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   j["energy_balance_error"] = r.energies.balance_error();
   j["energy_balance_error_max"] = r.max_balance_error;
   j["max_tie_gap"] = r.max_tie_gap;
+  {
+    const auto& bd = p.band_damage();
+    j["n_band_bonds"] = bd.n_band_bonds;
+    j["damage_reached_band"] = bd.reached;
+    j["band_failure_index_max"] = bd.max_failure_index;
+    if (bd.reached)
+      j["damage_reached_band_time"] = bd.first_time;
+  }
   j["band_width"] = c.settings.geometry.band_width;
   j["weight_floor"] = c.settings.geometry.weight_floor;
   {
@@ -306,6 +326,11 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
                                    {eps[3], eps[4], eps[5]},
                                    {eps[6], eps[7], eps[8]}};
     measured["n_bonds"] = model.bonds.size();
+    // cracks (the particle region's): counts by mode, broken fraction per slab
+    add_crack_summary(measured, observer.cracks(), model.particles, model.bonds,
+                      m.stress_layers, m.stress_layer_axis);
+    const auto& de = p.particle_solver()->energy();
+    measured["fracture_energy"] = de.fracture;
     groups_text = measured.dump();
   }
   groups_text = dealii::Utilities::MPI::broadcast(comm, groups_text, 0);

@@ -41,6 +41,11 @@ ParticleBlending blend_particles(const Handshake& h, const std::vector<int>& int
     b.damping_force[k] *= a, b.damping_moment[k] *= a;
     for (const int i : {b.a[k], b.b[k]})
       r.inertia_weight[i] = std::max(r.inertia_weight[i], a);
+    if (a < 1.0)
+    {
+      r.band_bonds.push_back(k);
+      r.band_bond_alpha.push_back(a);
+    }
   }
   for (std::size_t i = 0; i < p.size(); ++i)
   {

@@ -30,6 +30,9 @@ struct ParticleBlending
   std::vector<int> interface;      ///< particles whose centres lie in the band (tied)
   std::vector<double> mass_weight; ///< w_p per particle
   std::vector<double> inertia_weight;
+  /// Bonds whose weight alpha (at the reference midpoint) is below 1: the band's, and alpha.
+  std::vector<std::size_t> band_bonds;
+  std::vector<double> band_bond_alpha;
 };
 
 /// The band particles. Throws std::runtime_error if a particle centre lies outside the particle

@@ -3,9 +3,13 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "dem/bonds/bond_stress.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -192,6 +196,16 @@ void CoupledProblem::setup()
               for (std::size_t k = 0; k < w.size(); ++k)
                 w[k] = 1.0 - ratio[3 * k];
               blending_ = blend_particles(h, interface_, w, model_.particles, model_.bonds);
+              auto& b = model_.bonds;
+              band_damage_.n_band_bonds = blending_.band_bonds.size();
+              if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
+                for (const std::size_t k : blending_.band_bonds)
+                {
+                  band_tensile_.push_back(b.tensile_strength[k]);
+                  band_shear_.push_back(b.shear_strength[k]);
+                  b.tensile_strength[k] = b.shear_strength[k] =
+                      std::numeric_limits<double>::infinity();
+                }
             });
   }
   assemble_constraints();
@@ -455,8 +469,61 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The band's bonds against the strengths they had (coupled_problem.h, BandDamage): their forces
+// are alpha times a whole bond's, so the stress of the bond they stand for is that of F / alpha.
+void CoupledProblem::check_band_damage()
+{
+  std::vector<double> found(5, 0.0); // max kappa, reached, time, position
+  if (root_ && !band_tensile_.empty())
+  {
+    const auto& b = model_.bonds;
+    const auto& p = model_.particles;
+    const auto& law = b.failure;
+    double largest = band_damage_.max_failure_index;
+    for (std::size_t n = 0; n < blending_.band_bonds.size(); ++n)
+    {
+      const std::size_t k = blending_.band_bonds[n];
+      const double alpha = blending_.band_bond_alpha[n];
+      if (alpha < 1e-9 || b.state[k] == dem::BondState::broken)
+        continue;
+      const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
+      const Vec3 e = chord.normalized(), F = b.force[k] / alpha, M = b.moment[k] / alpha;
+      const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
+      const double tau_max =
+          dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
+      const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
+      largest = std::max(largest, kappa);
+      if (kappa >= 1 && !band_damage_.reached && found[1] == 0)
+      {
+        const Vec3 mid = 0.5 * (p.position[b.a[k]] + p.position[b.b[k]]);
+        found = {kappa, 1.0, time_, mid.x(), mid.y()};
+        band_damage_.first_position = mid;
+      }
+    }
+    found[0] = largest;
+  }
+  if (transfer_.parallel())
+    MPI_Bcast(found.data(), int(found.size()), MPI_DOUBLE, 0, comm_);
+  band_damage_.max_failure_index = std::max(band_damage_.max_failure_index, found[0]);
+  if (found[1] != 0 && !band_damage_.reached)
+  {
+    band_damage_.reached = true;
+    band_damage_.first_time = found[2];
+    if (root_)
+    {
+      const Vec3& x = band_damage_.first_position;
+      std::printf("coupling: WARNING: damage reached the handshake band at t = %.4g s (a band "
+                  "bond at %.4g, %.4g, %.4g m passed its strength; the band is held elastic, "
+                  "so the crack cannot go on into the continuum: enlarge the particle region)\n",
+                  found[2], x.x(), x.y(), x.z());
+      std::fflush(stdout);
+    }
+  }
+}
+
 void CoupledProblem::refresh_energies(const bool)
 {
+  check_band_damage();
   std::vector<double> dem(8, 0.0);
   if (root_)
   {

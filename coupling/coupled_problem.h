@@ -142,6 +142,19 @@ public:
   const std::vector<double>& tie_forces() const { return q_; }
   /// The interface particles' indices in the particle store (rank 0).
   const std::vector<int>& interface_particles() const { return interface_; }
+  /// The band stays elastic (the continuum cannot carry a crack): its bonds' strengths are
+  /// lifted at setup, and at every record their failure index (bond_damage.h eq. 1, on the
+  /// unweighted forces F / alpha) is checked against the strengths they had. A run whose damage
+  /// reaches the band says so here (rank 0 detects, every rank holds it after a record).
+  struct BandDamage
+  {
+    std::size_t n_band_bonds = 0;  ///< bonds held elastic
+    double max_failure_index = 0;  ///< largest kappa over the band's bonds and the records
+    bool reached = false;          ///< kappa >= 1 somewhere in the band
+    double first_time = -1;        ///< s, when it first did
+    Vec3 first_position = Vec3::Zero(); ///< that bond's midpoint, m
+  };
+  const BandDamage& band_damage() const { return band_damage_; }
   /// CG iterations of the last multiplier solve.
   unsigned int last_solve_iterations() const { return last_iterations_; }
   /// Wall seconds spent in the coupling (FE side, transfers, multipliers) and in the particles.
@@ -188,6 +201,9 @@ private:
   std::vector<double> alpha_p_; ///< alpha at each interface particle
 
   Energies energy_;
+  BandDamage band_damage_;
+  std::vector<double> band_tensile_, band_shear_; ///< the band bonds' own strengths, Pa
+  void check_band_damage();
   double work_q_particles_ = 0, damping_particles_ = 0;
   double lead_q_ = 0, lead_damping_ = 0; ///< this step's half-step leads of the two works
   double max_gap_ = 0;
