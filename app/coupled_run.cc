@@ -329,6 +329,14 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     // cracks (the particle region's): counts by mode, broken fraction per slab
     add_crack_summary(measured, observer.cracks(), model.particles, model.bonds,
                       m.stress_layers, m.stress_layer_axis);
+    if (!observer.cracks().empty())
+    {
+      const auto& first = observer.cracks().front();
+      measured["first_crack"] = {{"time", first.time},
+                                 {"position", to_json(first.midpoint)},
+                                 {"mode", first.mode == dem::CrackMode::tension ? "tension"
+                                                                                : "shear"}};
+    }
     const auto& de = p.particle_solver()->energy();
     measured["fracture_energy"] = de.fracture;
     groups_text = measured.dump();
