@@ -47,7 +47,8 @@ int main(int argc, char** argv)
           throw std::runtime_error("FAIL " + k + ": missing");
         node = &(*node)[part];
       }
-      return node->get<double>();
+      // true / false read as 1 / 0 (flags such as damage_reached_band)
+      return node->is_boolean() ? double(node->get<bool>()) : node->get<double>();
     };
     double value;
     if (op == "near_in")
