@@ -1,6 +1,7 @@
 #include "coupling/multipliers.h"
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace dembridge::coupling
 {
@@ -48,6 +49,39 @@ void MultiplierSolver::setup(const PointTransfer& transfer,
     if (!(d > 0))
       throw std::runtime_error("Coupling: a tie has no stiffness to act on (zero row in the "
                                "lumped constraint matrix)");
+  if (solve_ == ConstraintSolve::exact && tying_ == Tying::particle && !transfer.parallel())
+    factorise();
+}
+
+// S^c = G diag(M^-1_c) G^T + diag(1 / m_p) per component c, from the rows of G: each slot's
+// points couple pairwise.
+void MultiplierSolver::factorise()
+{
+  const std::size_t n = G_->n_points();
+  const auto& ptr = G_->row_pointers();
+  const auto& slot = G_->row_slots();
+  const auto& value = G_->row_values();
+  std::vector<std::vector<std::pair<int, double>>> at_slot(G_->n_slots());
+  for (std::size_t p = 0; p < n; ++p)
+    for (unsigned int k = ptr[p]; k < ptr[p + 1]; ++k)
+      at_slot[slot[k]].emplace_back(int(p), value[k]);
+  for (int c = 0; c < 3; ++c)
+  {
+    std::vector<Eigen::Triplet<double>> t;
+    for (std::size_t s = 0; s < at_slot.size(); ++s)
+      for (const auto& [p, Np] : at_slot[s])
+        for (const auto& [q, Nq] : at_slot[s])
+          t.emplace_back(p, q, Np * Nq * inv_M_[3 * s + c]);
+    for (std::size_t p = 0; p < n; ++p)
+      t.emplace_back(int(p), int(p), inv_m_[p]);
+    S_[c].resize(long(n), long(n));
+    S_[c].setFromTriplets(t.begin(), t.end());
+    factor_[c] = std::make_unique<Eigen::SimplicialLLT<Sparse>>(S_[c]);
+    if (factor_[c]->info() != Eigen::Success)
+      throw std::runtime_error("Coupling: the tie's constraint matrix is not positive definite");
+  }
+  rhs_.resize(long(n));
+  sol_.resize(long(n));
 }
 
 void MultiplierSolver::apply_schur(const std::vector<double>& x, std::vector<double>& y)
@@ -91,6 +125,20 @@ unsigned int MultiplierSolver::solve(const std::vector<double>& rho, const doubl
     x_[i] = b_[i] / diagonal_[i]; // the lumped solve, and the start of CG
   unsigned int iterations = 0;
   residual_ = 0;
+  if (factor_[0]) // S factorised: q = S^-1 b per component; S q = b to round-off
+  {
+    const std::size_t np = n / 3;
+    for (int c = 0; c < 3; ++c)
+    {
+      for (std::size_t p = 0; p < np; ++p)
+        rhs_[long(p)] = b_[3 * p + c];
+      sol_ = factor_[c]->solve(rhs_);
+      for (std::size_t p = 0; p < np; ++p)
+        q[3 * p + c] = sol_[long(p)];
+    }
+    Sq_ = b_;
+    return 0;
+  }
   if (solve_ == ConstraintSolve::exact)
   {
     // Preconditioned conjugate gradients, preconditioner diag(A 1).
