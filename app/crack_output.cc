@@ -1,9 +1,10 @@
 #include "crack_output.h"
+#include "checkpoint.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
+#include "particle_vtu_file.h"
 #include <cmath>
 #include <cstdio>
-#include <deal.II/base/data_out_base.h>
 #include <fstream>
 #include <iomanip>
 
@@ -20,39 +21,48 @@ void CrackOutput::update(const dem::ExplicitSolver& s)
   cracks_.insert(cracks_.end(), all.begin() + long(cracks_.size()), all.end());
 }
 
+void CrackOutput::visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s)
+{
+  dem::StateGroup group(a, "crack_output");
+  std::size_t taken = cracks_.size();
+  a.io("taken", taken);
+  visit_file_list(a, "snapshots", files_);
+  if (!a.loading())
+    return;
+  if (taken > s.cracks().size())
+    throw dem::InputError(a.where() + "taken: more cracks than the solver's log holds");
+  cracks_.assign(s.cracks().begin(), s.cracks().begin() + long(taken));
+}
+
 void CrackOutput::snapshot(double time, long step)
 {
   if (!write_vtu_)
     return;
-  using dealii::DataComponentInterpretation::component_is_part_of_vector;
-  using dealii::DataComponentInterpretation::DataComponentInterpretation;
-  const std::vector<std::string> names = {"time",       "mode", "energy", "particle_a",
-                                          "particle_b", "axis", "axis",   "axis"};
-  const std::vector<
-      std::tuple<unsigned int, unsigned int, std::string, DataComponentInterpretation>>
-      ranges = {{5, 7, "axis", component_is_part_of_vector}};
-  std::vector<dealii::DataOutBase::Patch<0, 3>> patches(cracks_.size());
-  for (std::size_t k = 0; k < cracks_.size(); ++k)
+  const std::size_t n = cracks_.size();
+  std::vector<dem::Vec3> points(n), axis(n);
+  std::vector<double> t(n), energy(n), axis_values(3 * n);
+  std::vector<std::uint8_t> mode(n);
+  std::vector<std::int64_t> a(n), b(n), bond(n);
+  for (std::size_t k = 0; k < n; ++k)
   {
     const auto& c = cracks_[k];
-    auto& patch = patches[k];
-    patch.vertices[0] = dealii::Point<3>(c.midpoint.x(), c.midpoint.y(), c.midpoint.z());
-    patch.patch_index = unsigned(k);
-    patch.data.reinit(unsigned(names.size()), 1);
-    const double values[] = {c.time,      double(c.mode == dem::CrackMode::shear),
-                             c.energy,    double(c.a),
-                             double(c.b), c.axis.x(),
-                             c.axis.y(),  c.axis.z()};
-    for (unsigned r = 0; r < names.size(); ++r)
-      patch.data(r, 0) = float(values[r]);
+    points[k] = c.midpoint, t[k] = c.time, energy[k] = c.energy;
+    mode[k] = std::uint8_t(c.mode == dem::CrackMode::shear); // 0 tension, 1 shear
+    a[k] = c.a, b[k] = c.b, bond[k] = std::int64_t(c.bond);
+    for (int d = 0; d < 3; ++d)
+      axis_values[3 * k + std::size_t(d)] = c.axis[d];
   }
+  VtuFile file(points, VtuFile::Cells::vertices);
+  file.point_data("time", t);
+  file.cell_data("mode", mode);
+  file.point_data("energy", energy);
+  file.point_data("particle_a", a);
+  file.point_data("particle_b", b);
+  file.point_data("bond", bond);
+  file.point_data("axis", axis_values, 3);
   char name[40];
   std::snprintf(name, sizeof name, "cracks_%06zu.vtu", files_.size());
-  std::ofstream out(dir_ / name);
-  if (!out)
-    throw std::runtime_error((dir_ / name).string() + ": cannot write");
-  dealii::DataOutBase::VtkFlags flags(time, unsigned(step), false);
-  dealii::DataOutBase::write_vtu(patches, names, ranges, flags, out);
+  file.write(dir_ / name, time, step);
   files_.emplace_back(time, name);
 }
 
@@ -76,8 +86,7 @@ void CrackOutput::finish() const
   std::filesystem::rename(part, file);
   if (write_vtu_)
   {
-    std::ofstream out(dir_ / "cracks.pvd");
-    dealii::DataOutBase::write_pvd_record(out, files_);
+    write_pvd(dir_ / "cracks.pvd", files_);
   }
 }
 

@@ -5,7 +5,9 @@
 //    brittle bond, the energy a softening bond dissipated), particle ids a b and the bond index;
 //    written under a temporary name and renamed when the run completes;
 //  - cracks.pvd + cracks_NNNNNN.vtu: at every snapshot, every crack so far as a point at its bond
-//    midpoint (ParaView: Glyph with the `axis` vector), through deal.II's DataOutBase;
+//    midpoint (ParaView: Glyph with the `axis` vector): time, energy, axis, particle_a,
+//    particle_b and bond (Int64) as point data, mode (UInt8: 0 tension, 1 shear) as cell data
+//    (particle_vtu_file.h);
 //  - summary.json: n_broken_bonds, broken_bonds_tension, broken_bonds_shear, the broken-bond
 //    fraction per stress-layer slab (damage_layers) and the peak of the load history (peak_stress
 //    and strain_at_peak for uniaxial tests, peak_load for three-point bending), from
@@ -32,6 +34,11 @@ public:
   /// Writes cracks.csv and cracks.pvd.
   void finish() const;
   const std::vector<dem::CrackEvent>& cracks() const { return cracks_; }
+  /// The cracks_NNNNNN.vtu snapshots so far (time, file name).
+  const std::vector<std::pair<double, std::string>>& files() const { return files_; }
+  /// Checkpoints: the snapshot list and how much of the solver's crack log was taken (restored
+  /// from the solver's restored log, which is why the solver is visited first).
+  void visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s);
 
 private:
   std::filesystem::path dir_;

@@ -127,6 +127,9 @@ void declare_dem_parameters(ParameterHandler& prm)
       "quasi-static speed it cannot fire at the turning point of an oscillation.");
   prm.declare_entry("max steps", "100000000", Integer(1), "Step limit.");
   prm.declare_entry("threads", "1", Integer(1, 256), "Threads for the force and update loops.");
+  prm.declare_entry("load steps", "1", Integer(1, 100000),
+                    "Static solver: equilibria at t_k = k end time / N, k = 1..N, one history.csv "
+                    "row each (the last is the final state).");
   prm.leave_subsection();
 
   prm.enter_subsection("Groups");
@@ -176,6 +179,13 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("snapshot interval", "0", Integer(0),
                     "Steps between ParaView snapshots; 0: first and last step only.");
   prm.declare_entry("write vtu", "true", Bool(), "Write ParaView files (particles, bonds).");
+  prm.declare_entry("checkpoint interval", "0", Double(0),
+                    "Simulated time between checkpoints (s; explicit runs): OUTPUT/checkpoint.h5, "
+                    "resumed by 'dembridge run CASE --resume OUTPUT' (docs/checkpoint.md); "
+                    "0: none.");
+  prm.declare_entry("checkpoint wall interval", "0", Double(0),
+                    "Wall-clock time between checkpoints (s), beside or instead of 'checkpoint "
+                    "interval'; 0: none.");
   prm.leave_subsection();
 
   declare_damage_parameters(prm);
@@ -445,6 +455,11 @@ OutputSettings parse_output_settings(ParameterHandler& prm)
   o.history_interval = prm.get_integer("history interval");
   o.snapshot_interval = prm.get_integer("snapshot interval");
   o.write_vtu = prm.get_bool("write vtu");
+  o.checkpoint_interval = prm.get_double("checkpoint interval");
+  o.checkpoint_wall_interval = prm.get_double("checkpoint wall interval");
+  prm.leave_subsection();
+  prm.enter_subsection("Simulation");
+  o.load_steps = int(prm.get_integer("load steps"));
   prm.leave_subsection();
   return o;
 }

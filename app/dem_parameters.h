@@ -27,6 +27,9 @@ struct OutputSettings
   long history_interval = 100;
   long snapshot_interval = 0;
   bool write_vtu = true;
+  double checkpoint_interval = 0;      ///< s of simulated time (checkpoint.h)
+  double checkpoint_wall_interval = 0; ///< s of wall time
+  int load_steps = 1;                  ///< static solver (Simulation/load steps)
 };
 OutputSettings parse_output_settings(dealii::ParameterHandler& prm);
 

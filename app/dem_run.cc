@@ -1,4 +1,5 @@
 #include "dem_run.h"
+#include "checkpoint.h"
 #include "contact_output.h"
 #include "crack_output.h"
 #include "dem/measurements/failure_measurements.h"
@@ -6,14 +7,21 @@
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
+#include "dem_history.h"
 #include "dem_parameters.h"
+#include "dem_static_run.h"
 #include "particle_vtu.h"
+#include "provenance.h"
+#include "version.h"
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <deal.II/base/mpi.h>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <set>
 
 namespace dembridge::app
 {
@@ -62,23 +70,18 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
 class CaseObserver : public dem::RunObserver
 {
 public:
-  CaseObserver(const std::filesystem::path& dir, const OutputSettings& out, const dem::Model& model)
-      : model_(model), vtu_(dir), write_vtu_(out.write_vtu), history_path_(dir / "history.csv"),
-        cracks_(dir, out.write_vtu)
+  CaseObserver(const std::filesystem::path& dir, const OutputSettings& out, const dem::Model& model,
+               const CheckpointSettings& checkpoint)
+      : model_(model), vtu_(dir, group_names(model)), write_vtu_(out.write_vtu), dir_(dir),
+        history_path_(dir / "history.csv"), cracks_(dir, out.write_vtu), checkpoint_(checkpoint)
   {
     // Written under a temporary name and renamed when the run completes, so an interrupted
     // run never leaves a history that looks complete.
     history_.open(dir / "history.csv.part");
     if (!history_)
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
-    history_ << "step,time,kinetic_energy,strain_energy,damping_energy,external_work,"
-                "fracture_energy,contact_strain_energy,friction_energy,contact_damping_energy,"
-                "wall_work,energy_balance_error,max_speed,unbalanced_force_ratio,n_broken_bonds";
-    for (const auto& g : model.groups)
-      for (const char* q : {"ux", "uy", "uz", "fx", "fy", "fz"})
-        history_ << ',' << g.name << '_' << q;
-    history_ << contacts_.history_header();
-    history_ << '\n' << std::setprecision(10);
+    history_ << history_header(model, contacts_);
+    history_ << std::setprecision(10);
   }
 
   /// Records the loaded end's axial reaction against the end groups' relative displacement
@@ -132,19 +135,40 @@ public:
     const auto& e = s.energy();
     if (e.kinetic + e.strain > 0)
       kinetic_share_.emplace_back(s.time(), e.kinetic / (e.kinetic + e.strain));
-    history_ << s.steps() << ',' << s.time() << ',' << e.kinetic << ',' << e.strain << ','
-             << e.damping << ',' << e.external << ',' << e.fracture << ',' << e.contact_strain
-             << ',' << e.friction << ',' << e.contact_damping << ',' << e.wall_work << ','
-             << e.relative_error() << ',' << s.max_speed() << ',' << s.unbalanced_force_ratio()
-             << ',' << s.n_broken_bonds();
-    for (std::size_t g = 0; g < s.groups().size(); ++g)
-    {
-      const dem::Vec3 u = s.group_mean_displacement(int(g)), f = s.group_force(int(g));
-      history_ << ',' << u.x() << ',' << u.y() << ',' << u.z() << ',' << f.x() << ',' << f.y()
-               << ',' << f.z();
-    }
-    contacts_.history_row(history_, s.time());
-    history_ << '\n';
+    history_row(
+        history_,
+        {s.steps(), s.time(), e, s.max_speed(), s.unbalanced_force_ratio(), s.n_broken_bonds()},
+        model_.particles, s.groups(), contacts_);
+  }
+
+  void on_start(dem::ExplicitSolver& s, dem::RunProgress& progress) override
+  {
+    if ((checkpoint_.enabled() || checkpoint_.resume) && !s.checkpointable())
+      throw dem::InputError("Output/checkpoint interval: this run has forces (a coupling?) "
+                            "that cannot be checkpointed yet");
+    if (!checkpoint_.resume)
+      return;
+    read_checkpoint(checkpoint_.file, [&](dem::StateArchive& a) { visit_state(a, s, progress); });
+    std::printf("resumed from %s: step %ld, t = %.6g s\n", checkpoint_.file.string().c_str(),
+                s.steps(), s.time());
+    std::fflush(stdout);
+  }
+
+  void on_checkpoint(dem::ExplicitSolver& s, dem::RunProgress& progress) override
+  {
+    // one writer: a DEM run started on several MPI ranks runs the same model on each
+    if (checkpoint_.file.empty() || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return;
+    CheckpointHeader h;
+    h.step = s.steps();
+    h.time = s.time();
+    h.version = version();
+    h.git_commit = git_commit();
+    h.written_at = utc_now();
+    h.case_name = checkpoint_.case_name;
+    h.case_text = checkpoint_.case_text;
+    write_checkpoint(checkpoint_.file, h,
+                     [&](dem::StateArchive& a) { visit_state(a, s, progress); });
   }
 
   void on_snapshot(const dem::ExplicitSolver& s) override
@@ -174,10 +198,81 @@ public:
   }
 
 private:
+  /// The complete state of the run for a checkpoint: the solver's, the driver's and what this
+  /// observer has gathered (load histories, history.csv so far, snapshot and crack lists).
+  void visit_state(dem::StateArchive& a, dem::ExplicitSolver& s, dem::RunProgress& progress)
+  {
+    s.visit_state(a);
+    progress.visit_state(a);
+    dem::StateGroup group(a, "output");
+    a.io("axial_displacement", du_);
+    a.io("axial_force", force_);
+    a.io("axial_fixed_force", fixed_force_);
+    std::vector<double> share_time, share;
+    for (const auto& [t, k] : kinetic_share_)
+      share_time.push_back(t), share.push_back(k);
+    a.io("kinetic_share_time", share_time);
+    a.io("kinetic_share", share);
+    a.io("flexural_load", flex_load_);
+    a.io("flexural_deflection", flex_u_);
+    history_.flush();
+    std::string history;
+    if (!a.loading())
+    {
+      std::ifstream in(history_path_.string() + ".part", std::ios::binary);
+      history.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    a.io("history_csv", history);
+    vtu_.visit_state(a);
+    cracks_.visit_state(a, s);
+    if (!a.loading())
+      return;
+    if (share_time.size() != share.size())
+      throw dem::InputError(a.where() + "kinetic_share: not as long as its times");
+    kinetic_share_.clear();
+    for (std::size_t k = 0; k < share.size(); ++k)
+      kinetic_share_.emplace_back(share_time[k], share[k]);
+    // history.csv so far, and no snapshot of the interrupted run after the checkpoint
+    history_.close();
+    {
+      std::ofstream out(history_path_.string() + ".part", std::ios::binary | std::ios::trunc);
+      out << history;
+    }
+    history_.open(history_path_.string() + ".part", std::ios::app);
+    if (!history_)
+      throw std::runtime_error(history_path_.string() + ": cannot write");
+    remove_later_snapshots();
+  }
+
+  /// Removes the snapshot files the interrupted run wrote after its checkpoint (they are
+  /// written again); warns of listed ones that are missing.
+  void remove_later_snapshots() const
+  {
+    std::set<std::string> listed;
+    for (const auto* files : {&vtu_.particle_files(), &vtu_.bond_files(), &cracks_.files()})
+      for (const auto& f : *files)
+        listed.insert(f.second);
+    for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    {
+      const std::string name = entry.path().filename().string();
+      const bool snapshot = entry.path().extension() == ".vtu" &&
+                            (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
+                             name.rfind("cracks_", 0) == 0);
+      if (snapshot && !listed.count(name))
+        std::filesystem::remove(entry.path());
+    }
+    for (const auto& name : listed)
+      if (!std::filesystem::exists(dir_ / name))
+        std::printf("dembridge: warning: snapshot %s of the interrupted run is missing (its "
+                    "staging folder was cleared); the ParaView series lacks it\n",
+                    name.c_str());
+  }
+
   const dem::Model& model_;
   ContactOutput contacts_{model_}; ///< contact and wall columns of history.csv
   ParticleVtuSeries vtu_;
   bool write_vtu_;
+  std::filesystem::path dir_;
   std::filesystem::path history_path_;
   std::ofstream history_;
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
@@ -186,13 +281,22 @@ private:
   int pin_ = -1, roller_ = -1, top_ = -1;
   std::vector<double> flex_load_, flex_u_;
   CrackOutput cracks_;
+  CheckpointSettings checkpoint_;
 };
 } // namespace
 
-nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir)
+nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
+                            CheckpointSettings checkpoint)
 {
   const dem::CaseConfig config = parse_dem_case(prm);
   const OutputSettings out = parse_output_settings(prm);
+  checkpoint.interval = out.checkpoint_interval;
+  checkpoint.wall_interval = out.checkpoint_wall_interval;
+  if (config.run.static_solver && (checkpoint.enabled() || checkpoint.resume))
+    throw dem::InputError(
+        std::string(checkpoint.resume ? "--resume" : "Output/checkpoint interval") +
+        ": the static solver has no time steps to checkpoint (explicit runs "
+        "only)");
   dem::Model model = dem::build_model(config);
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",
@@ -207,18 +311,11 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   std::vector<dem::CrackEvent> cracks;
   if (config.run.static_solver)
   {
-    const dem::StaticResult st = dem::solve_static(model);
-    std::printf("static solve: %ld unknowns, %s, %ld iterations, %.3g s\n", st.n_free_dofs,
-                st.method.c_str(), st.iterations, st.assembly_seconds + st.solve_seconds);
-    dem::record_bond_forces(model.particles, model.bonds);
-    if (out.write_vtu)
-    {
-      ParticleVtuSeries vtu(dir);
-      vtu.write(model.particles, model.bonds, 0.0, 0);
-      vtu.finish();
-    }
+    const StaticRun run = run_static_load_steps(model, config, out, dir);
+    const dem::StaticResult& st = run.last;
     r.stop_reason = "static";
-    r.wall_seconds = st.assembly_seconds + st.solve_seconds;
+    r.wall_seconds = run.seconds;
+    j["load_steps"] = run.load_steps;
     if (!config.measure.deflection_group.empty())
     {
       const auto& g = model.groups[model.group_index(config.measure.deflection_group,
@@ -237,7 +334,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   }
   else
   {
-    CaseObserver observer(dir, out, model);
+    CaseObserver observer(dir, out, model, checkpoint);
     if (!config.measure.modulus_fixed_group.empty())
       observer.track_axial(
           model.group_index(config.measure.modulus_fixed_group, "Measurements/modulus groups"),
@@ -253,6 +350,10 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     dem::RunSchedule schedule;
     schedule.record_interval = out.history_interval;
     schedule.snapshot_interval = out.snapshot_interval;
+    schedule.checkpoint_interval = checkpoint.file.empty() ? 0.0 : checkpoint.interval;
+    schedule.checkpoint_wall_interval = checkpoint.file.empty() ? 0.0 : checkpoint.wall_interval;
+    if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
+      schedule.kill_after_step = std::atol(kill);
     r = dem::run_explicit(model, config, observer, schedule);
     observer.finish();
     axial_du = observer.axial_displacements();
@@ -267,6 +368,10 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;
     j["solver"] = {{"type", "explicit"}};
+    if (checkpoint.resume)
+      j["resumed_from"] = {{"file", checkpoint.file.string()},
+                           {"step", checkpoint.resumed_step},
+                           {"time", checkpoint.resumed_time}};
     j["time_step"] = model.time_step;
     j["steps"] = r.steps;
     j["simulated_time"] = r.time;

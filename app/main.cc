@@ -5,6 +5,8 @@
 //   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
+#include "checkpoint.h"
+#include "dem/core/progress.h"
 #include "dem/core/types.h"
 #include "dem_run.h"
 #include "elasticity_command.h"
@@ -63,19 +65,21 @@ std::string usage_error(CLI::App& app, int argc, char** argv, const std::string&
 }
 
 int run(const std::string& case_file, const std::vector<std::string>& overrides,
-        std::string output_dir)
+        std::string output_dir, const std::string& resume_dir)
 {
   const auto start = std::chrono::steady_clock::now();
   const std::string started_at = dembridge::app::utc_now();
   auto prm = dembridge::app::read_case(case_file, overrides);
-  if (output_dir.empty())
-    output_dir = (fs::path("output") / fs::path(case_file).stem()).string();
-  const fs::path dir(output_dir);
-  // Written into a staging folder and moved in on success (output_folder.h): a failed or killed
-  // run leaves the previous run's complete results, never a mix.
-  dembridge::app::OutputFolder folder(dir, MPI_COMM_WORLD);
   // Paths inside the case (particle files, meshes) are relative to the case file.
   const fs::path case_dir = fs::absolute(case_file).parent_path();
+  // --resume DIR continues the run in DIR from DIR/checkpoint.h5 (checkpoint.h)
+  const dembridge::app::CheckpointSettings checkpoint =
+      dembridge::app::prepare_checkpoint(*prm, case_file, output_dir, resume_dir);
+  const fs::path dir(output_dir);
+  // Written into a staging folder and moved in on success (output_folder.h): a failed or killed
+  // run leaves the previous run's complete results, never a mix; a resumed run keeps the staged
+  // files of the run it continues.
+  dembridge::app::OutputFolder folder(dir, MPI_COMM_WORLD, checkpoint.resume);
   nlohmann::json summary, memory_estimate;
   const std::string mode = prm->get("Mode");
   const fs::path abs_dir = folder.staging();
@@ -86,7 +90,7 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     // before building anything: refuse a case the machine's memory cannot hold
     memory_estimate = dembridge::app::check_memory(*prm);
     if (mode == "dem")
-      summary = dembridge::app::run_dem_case(*prm, abs_dir);
+      summary = dembridge::app::run_dem_case(*prm, abs_dir, checkpoint);
     else if (mode == "coupled")
     {
 #ifdef DEMBRIDGE_HAVE_COUPLING
@@ -141,6 +145,8 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
   }
   folder.commit();
   if (rank0)
+    dembridge::app::finish_checkpoints(checkpoint); // the run is complete: no checkpoint left
+  if (rank0)
   {
     dembridge::app::print_figures(summary, std::cout);
     std::cout << "dembridge: wrote " << (dir / "summary.json").string() << '\n';
@@ -153,6 +159,8 @@ int main(int argc, char** argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   dembridge::app::set_command_line(argc, argv);
+  // long phases without an observer (random packing) report here (dem/core/progress.h)
+  dembridge::dem::progress_sink() = [](const std::string& line) { std::cout << line << std::endl; };
   CLI::App app{"dembridge: coupled DEM-FEM for bonded-particle models"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dembridge " + dembridge::app::version() + " (git commit " +
@@ -163,6 +171,10 @@ int main(int argc, char** argv)
   run_cmd->add_option("case", case_file, "Case file")->required();
   run_cmd->add_option("--set", overrides, "Override a parameter: \"Section/Key=value\"");
   run_cmd->add_option("--output-dir", output_dir, "Output folder (default output/CASE)");
+  std::string resume_dir;
+  run_cmd->add_option("--resume", resume_dir,
+                      "Continue the interrupted run in this output folder from its checkpoint "
+                      "(Output/checkpoint interval; docs/checkpoint.md)");
   auto* print_cmd = app.add_subcommand("print-parameters",
                                        "Print every parameter with its default and documentation");
   dembridge::app::VerifyOptions verify;
@@ -218,7 +230,7 @@ int main(int argc, char** argv)
       return dembridge::app::verify(verify);
     if (*elasticity_cmd)
       return dembridge::app::run_elasticity(elasticity);
-    return run(case_file, overrides, output_dir);
+    return run(case_file, overrides, output_dir, resume_dir);
   }
   catch (const std::exception& e)
   {

@@ -32,7 +32,7 @@ std::vector<std::string> referenced_files(const fs::path& collection)
 }
 } // namespace
 
-OutputFolder::OutputFolder(const fs::path& dir, MPI_Comm comm)
+OutputFolder::OutputFolder(const fs::path& dir, MPI_Comm comm, bool resume)
     : dir_(fs::absolute(dir).lexically_normal()), staging_(dir_ / ".partial"), comm_(comm),
       writer_(is_rank0(comm))
 {
@@ -41,8 +41,9 @@ OutputFolder::OutputFolder(const fs::path& dir, MPI_Comm comm)
     if (fs::exists(dir_) && !fs::is_directory(dir_))
       throw std::runtime_error(dir_.string() + ": the output folder is a file");
     fs::create_directories(dir_);
-    fs::remove_all(staging_); // left by a killed run
-    fs::create_directory(staging_);
+    if (!resume)
+      fs::remove_all(staging_); // left by a killed run
+    fs::create_directories(staging_);
   }
   MPI_Barrier(comm_);
 }

@@ -7,7 +7,8 @@
 // its .pvd collections reference and dembridge's fixed file names) and move the new files in,
 // summary.json last: a folder with a summary.json holds one complete run, and nothing else of
 // the user's is touched. A run that fails removes its staging folder and leaves DIR exactly as
-// it was; a killed run leaves DIR as it was plus the hidden .partial, which the next run clears.
+// it was; a killed run leaves DIR as it was plus the hidden .partial, which the next run clears
+// (or, with --resume, continues: checkpoint.h).
 #include <filesystem>
 #include <mpi.h>
 #include <string>
@@ -19,8 +20,9 @@ class OutputFolder
 {
 public:
   /// Creates @p dir and an empty staging folder in it (clearing one left by a killed run). With
-  /// several MPI ranks, rank 0 does the file work and the others wait for it.
-  OutputFolder(const std::filesystem::path& dir, MPI_Comm comm);
+  /// several MPI ranks, rank 0 does the file work and the others wait for it. @p resume keeps
+  /// the staging folder a killed run left: a run resumed from a checkpoint continues it.
+  OutputFolder(const std::filesystem::path& dir, MPI_Comm comm, bool resume = false);
   /// Removes the staging folder unless the run was committed.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;

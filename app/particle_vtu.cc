@@ -1,155 +1,118 @@
 #include "particle_vtu.h"
+#include "checkpoint.h"
 #include "dem/bonds/bond_stress.h"
 #include "dem/measurements/particle_stress.h"
+#include "particle_vtu_file.h"
 #include <cstdio>
-#include <deal.II/base/data_out_base.h>
 #include <fstream>
 
 namespace dembridge::app
 {
-namespace
-{
-using dealii::DataComponentInterpretation::component_is_part_of_tensor;
-using dealii::DataComponentInterpretation::component_is_part_of_vector;
-using dealii::DataComponentInterpretation::DataComponentInterpretation;
-using Ranges =
-    std::vector<std::tuple<unsigned int, unsigned int, std::string, DataComponentInterpretation>>;
-
-dealii::Point<3> point(const dem::Vec3& x)
-{
-  return {x.x(), x.y(), x.z()};
-}
-
-void put(dealii::Table<2, float>& data, unsigned& row, unsigned col, const dem::Vec3& v)
-{
-  for (int d = 0; d < 3; ++d)
-    data(row + d, col) = float(v[d]);
-  row += 3;
-}
-
-template <int dim>
-void write_file(const std::filesystem::path& file,
-                const std::vector<dealii::DataOutBase::Patch<dim, 3>>& patches,
-                const std::vector<std::string>& names, const Ranges& ranges, double time, long step)
-{
-  std::ofstream out(file);
-  if (!out)
-    throw std::runtime_error(file.string() + ": cannot write");
-  dealii::DataOutBase::VtkFlags flags(time, unsigned(step), false);
-  dealii::DataOutBase::write_vtu(patches, names, ranges, flags, out);
-}
-} // namespace
-
 void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time,
                               long step)
 {
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
-  // Particles
+  const std::size_t n = p.size(), nb = b.size();
+  auto vectors = [&](auto field)
   {
-    const std::vector<std::string> names = {"radius",
-                                            "displacement",
-                                            "displacement",
-                                            "displacement",
-                                            "velocity",
-                                            "velocity",
-                                            "velocity",
-                                            "angular_velocity",
-                                            "angular_velocity",
-                                            "angular_velocity",
-                                            "force",
-                                            "force",
-                                            "force",
-                                            "moment",
-                                            "moment",
-                                            "moment",
-                                            "group_mask",
-                                            "coordination",
-                                            "id",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress",
-                                            "stress"};
-    Ranges ranges;
-    for (unsigned first : {1u, 4u, 7u, 10u, 13u})
-      ranges.emplace_back(first, first + 2, names[first], component_is_part_of_vector);
-    ranges.emplace_back(19u, 27u, "stress", component_is_part_of_tensor);
-    // Particle stress tensors (thesis eq. 62), Pa, tension positive.
-    const dem::ParticleStresses stress = dem::particle_stresses(p, b);
-    std::vector<dealii::DataOutBase::Patch<0, 3>> patches(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i)
+    std::vector<double> v(3 * n);
+    for (std::size_t i = 0; i < n; ++i)
     {
-      auto& patch = patches[i];
-      patch.vertices[0] = point(p.position[i]);
-      patch.patch_index = unsigned(i);
-      patch.data.reinit(unsigned(names.size()), 1);
-      unsigned row = 0;
-      patch.data(row++, 0) = float(p.radius[i]);
-      put(patch.data, row, 0, p.position[i] - p.reference_position[i]);
-      put(patch.data, row, 0, p.velocity[i]);
-      put(patch.data, row, 0, p.angular_velocity[i]);
-      put(patch.data, row, 0, p.force[i]);
-      put(patch.data, row, 0, p.torque[i]);
-      patch.data(row++, 0) = float(p.group_mask[i]);
-      patch.data(row++, 0) = float(p.coordination[i]);
-      patch.data(row++, 0) = float(i);
+      const dem::Vec3 x = field(i);
+      v[3 * i] = x.x(), v[3 * i + 1] = x.y(), v[3 * i + 2] = x.z();
+    }
+    return v;
+  };
+  // Particles: vertices with point data
+  {
+    VtuFile file(p.position, VtuFile::Cells::vertices);
+    file.point_data("radius", p.radius);
+    file.point_data("displacement",
+                    vectors([&](std::size_t i) { return p.position[i] - p.reference_position[i]; }),
+                    3);
+    file.point_data("velocity", vectors([&](std::size_t i) { return p.velocity[i]; }), 3);
+    file.point_data("angular_velocity",
+                    vectors([&](std::size_t i) { return p.angular_velocity[i]; }), 3);
+    file.point_data("force", vectors([&](std::size_t i) { return p.force[i]; }), 3);
+    file.point_data("moment", vectors([&](std::size_t i) { return p.torque[i]; }), 3);
+    file.point_data("group_mask", p.group_mask);
+    file.point_data("coordination",
+                    std::vector<std::int32_t>(p.coordination.begin(), p.coordination.end()));
+    std::vector<std::int64_t> id(n);
+    for (std::size_t i = 0; i < n; ++i)
+      id[i] = std::int64_t(i);
+    file.point_data("id", id);
+    // Particle stress tensors (thesis eq. 62), Pa, tension positive; row-major 3 x 3.
+    const dem::ParticleStresses stress = dem::particle_stresses(p, b);
+    std::vector<double> sigma(9 * n);
+    for (std::size_t i = 0; i < n; ++i)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          patch.data(row++, 0) = float(stress.sigma[i](r, c));
-    }
-    const std::string file = std::string("particles_") + tag + ".vtu";
-    write_file(dir_ / file, patches, names, ranges, time, step);
-    particle_files_.emplace_back(time, file);
+          sigma[9 * i + std::size_t(3 * r + c)] = stress.sigma[i](r, c);
+    file.point_data("stress", sigma, 9);
+    file.field_strings("group_names", group_names_);
+    const std::string name = std::string("particles_") + tag + ".vtu";
+    file.write(dir_ / name, time, step);
+    particle_files_.emplace_back(time, name);
   }
-  // Bonds
+  // Bonds: line cells between the particle centres, the bond's quantities as cell data
   {
-    const std::vector<std::string> names = {
-        "normal_force", "shear_force", "twisting_moment", "bending_moment", "force", "force",
-        "force",        "state",       "tensile_stress",  "shear_stress",   "damage"};
-    Ranges ranges = {{4, 6, "force", component_is_part_of_vector}};
-    std::vector<dealii::DataOutBase::Patch<1, 3>> patches(b.size());
-    for (std::size_t k = 0; k < b.size(); ++k)
+    VtuFile file(p.position, VtuFile::Cells::lines);
+    std::vector<std::int64_t> pairs(2 * nb), id(nb);
+    std::vector<double> normal(nb), shear(nb), twist(nb), bending(nb), force(3 * nb);
+    std::vector<double> tensile(nb), shear_stress(nb), damage(nb);
+    std::vector<std::uint8_t> state(nb);
+    for (std::size_t k = 0; k < nb; ++k)
     {
-      auto& patch = patches[k];
+      pairs[2 * k] = b.a[k], pairs[2 * k + 1] = b.b[k], id[k] = std::int64_t(k);
       const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
-      patch.vertices[0] = point(xa);
-      patch.vertices[1] = point(xb);
-      patch.patch_index = unsigned(k);
-      patch.reference_cell = dealii::ReferenceCells::Line;
-      patch.data.reinit(unsigned(names.size()), 2);
       const dem::Vec3 e = (xb - xa).normalized();
       // a broken bond carries nothing (its last recorded forces are those before the break)
       const bool bonded = dem::is_bonded(b.state[k]);
       const dem::Vec3 F = bonded ? b.force[k] : dem::Vec3::Zero();
       const dem::Vec3 M = bonded ? b.moment[k] : dem::Vec3::Zero();
-      const double normal = -F.dot(e); // F is the force on b: pulling b back is tension
-      const double twist = M.dot(e);
+      normal[k] = -F.dot(e); // F is the force on b: pulling b back is tension
+      shear[k] = (F - F.dot(e) * e).norm();
+      twist[k] = M.dot(e);
+      bending[k] = (M - twist[k] * e).norm();
+      for (int d = 0; d < 3; ++d)
+        force[3 * k + std::size_t(d)] = F[d];
       // beam theory on the section (bond_stress.h) from the forces the bond carries
       const dem::BondStress st =
           dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], b.failure.moment_factor);
-      for (unsigned v = 0; v < 2; ++v)
-      {
-        unsigned row = 0;
-        patch.data(row++, v) = float(normal);
-        patch.data(row++, v) = float((F - F.dot(e) * e).norm());
-        patch.data(row++, v) = float(twist);
-        patch.data(row++, v) = float((M - twist * e).norm());
-        put(patch.data, row, v, F);
-        patch.data(row++, v) = float(int(b.state[k])); // 0 intact, 1 softening, 2 broken
-        patch.data(row++, v) = float(st.tensile);
-        patch.data(row++, v) = float(st.shear);
-        patch.data(row++, v) = float(b.damage.empty() ? 0.0 : b.damage[k]);
-      }
+      state[k] = std::uint8_t(b.state[k]); // 0 intact, 1 softening, 2 broken
+      tensile[k] = st.tensile;
+      shear_stress[k] = st.shear;
+      damage[k] = b.damage.empty() ? 0.0 : b.damage[k];
     }
-    const std::string file = std::string("bonds_") + tag + ".vtu";
-    write_file(dir_ / file, patches, names, ranges, time, step);
-    bond_files_.emplace_back(time, file);
+    file.lines(pairs);
+    file.cell_data("normal_force", normal);
+    file.cell_data("shear_force", shear);
+    file.cell_data("twisting_moment", twist);
+    file.cell_data("bending_moment", bending);
+    file.cell_data("force", force, 3);
+    file.cell_data("state", state);
+    file.cell_data("tensile_stress", tensile);
+    file.cell_data("shear_stress", shear_stress);
+    file.cell_data("damage", damage);
+    file.cell_data("id", id);
+    std::vector<std::int64_t> particle_id(n);
+    for (std::size_t i = 0; i < n; ++i)
+      particle_id[i] = std::int64_t(i);
+    file.point_data("particle_id", particle_id);
+    file.field_strings("group_names", group_names_);
+    const std::string name = std::string("bonds_") + tag + ".vtu";
+    file.write(dir_ / name, time, step);
+    bond_files_.emplace_back(time, name);
   }
+}
+
+void ParticleVtuSeries::visit_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "snapshots");
+  visit_file_list(a, "particles", particle_files_);
+  visit_file_list(a, "bonds", bond_files_);
 }
 
 void ParticleVtuSeries::finish() const
@@ -157,8 +120,7 @@ void ParticleVtuSeries::finish() const
   for (const auto& [name, files] :
        {std::pair{"particles.pvd", &particle_files_}, std::pair{"bonds.pvd", &bond_files_}})
   {
-    std::ofstream out(dir_ / name);
-    dealii::DataOutBase::write_pvd_record(out, *files);
+    write_pvd(dir_ / name, *files);
   }
 }
 } // namespace dembridge::app

@@ -1,15 +1,19 @@
 #pragma once
-// ParaView output of a bonded-particle state through deal.II's DataOutBase (no hand-written VTK):
-//  - particles: one vertex patch each, with radius, displacement, velocity, angular velocity,
-//    force, moment, group mask and coordination;
-//  - bonds: one line patch each (particle centre to particle centre), with normal force
-//    (tension positive), shear force, twisting moment, bending moment, the force vector, the
-//    bond state (0 intact, 1 softening, 2 broken), the tensile and shear stress of beam theory on
-//    the bond section (dem/bonds/bond_stress.h, Pa) and the damage D.
-// Snapshots go to DIR/particles_NNNNNN.vtu and DIR/bonds_NNNNNN.vtu; the .pvd time series are
-// written by finish().
+// ParaView output of a bonded-particle state (particle_vtu_file.h: Float64 points, integer ids,
+// cell data, field data):
+//  - particles_NNNNNN.vtu: one vertex cell per particle; point data radius, displacement,
+//    velocity, angular_velocity, force, moment (vectors), stress (3 x 3 tensor, thesis eq. 62,
+//    Pa), group_mask (UInt32: bit g for group g of group_names), coordination (Int32), id (Int64);
+//  - bonds_NNNNNN.vtu: the particle centres as points (point data particle_id) and one line cell
+//    per bond with cell data normal_force (tension positive), shear_force, twisting_moment,
+//    bending_moment, force (vector on particle b), state (UInt8: 0 intact, 1 softening,
+//    2 broken), tensile_stress and shear_stress (beam theory on the bond section,
+//    dem/bonds/bond_stress.h, Pa), damage D and id (Int64, the bond index);
+//  - both: field data TIME, CYCLE (the step) and group_names (string array).
+// The .pvd time series are written by finish() (particle_vtu_file.h: write_pvd, no date).
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
+#include "dem/core/state_archive.h"
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -20,7 +24,10 @@ namespace dembridge::app
 class ParticleVtuSeries
 {
 public:
-  explicit ParticleVtuSeries(std::filesystem::path dir) : dir_(std::move(dir)) {}
+  explicit ParticleVtuSeries(std::filesystem::path dir, std::vector<std::string> group_names = {})
+      : dir_(std::move(dir)), group_names_(std::move(group_names))
+  {
+  }
   void write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step);
   /// Writes particles.pvd and bonds.pvd listing every snapshot.
   void finish() const;
@@ -30,9 +37,12 @@ public:
     return particle_files_;
   }
   const std::vector<std::pair<double, std::string>>& bond_files() const { return bond_files_; }
+  /// Checkpoints: the snapshot lists (the files stay in the staging folder).
+  void visit_state(dem::StateArchive& a);
 
 private:
   std::filesystem::path dir_;
+  std::vector<std::string> group_names_;
   std::vector<std::pair<double, std::string>> particle_files_, bond_files_;
 };
 } // namespace dembridge::app

@@ -13,6 +13,7 @@
 #include "fem/fem_case.h"
 #endif
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <deal.II/base/mpi.h>
 #include <filesystem>
@@ -417,6 +418,9 @@ int verify(const VerifyOptions& o)
     const fs::path dem_dir = fs::absolute(dir / "dem");
     fs::create_directories(dem_dir);
     fs::remove(dem_dir / "summary.json");
+    std::printf("verify: step 1 of 2, the DEM run of %s (into %s)\n", case_name.c_str(),
+                dem_dir.c_str());
+    std::fflush(stdout);
     try
     {
       WorkingDirectory cd(case_dir);
@@ -457,6 +461,10 @@ int verify(const VerifyOptions& o)
   json fe;
   {
     auto fe_prm = read_case((fe_dir / "case.prm").string(), {});
+    std::printf("verify: step 2 of 2, the FE model of the specimen (E = %.6g Pa, nu = %.4g; into "
+                "%s)\n",
+                material->youngs_modulus, material->poisson_ratio, fe_dir.c_str());
+    std::fflush(stdout);
     fe = fem::run_case(*fe_prm, fe_dir, MPI_COMM_WORLD);
     fe["case"] = "case.prm";
     write_json_atomically(fe_dir, "summary.json", fe);

@@ -20,6 +20,29 @@ void declare_parameters(ParameterHandler& prm)
 
 namespace
 {
+/// deal.II's timer table goes to OUTPUT/timing.log (written by rank 0), not the terminal.
+void write_timer_log(const TimerOutput& timer, const std::filesystem::path& output_dir,
+                     MPI_Comm comm)
+{
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  std::ofstream log;
+  if (root)
+    log.open(output_dir / "timing.log");
+  std::streambuf* terminal = std::cout.rdbuf();
+  if (root && log)
+    std::cout.rdbuf(log.rdbuf());
+  try
+  {
+    timer.print_wall_time_statistics(comm);
+  }
+  catch (...)
+  {
+    std::cout.rdbuf(terminal);
+    throw;
+  }
+  std::cout.rdbuf(terminal);
+}
+
 nlohmann::json run_static(const Parameters& p, const std::filesystem::path& output_dir,
                           MPI_Comm comm)
 {
@@ -33,9 +56,16 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
     throw std::runtime_error("FEM/Boundary conditions: the supports leave rigid-body modes free (" +
                              free + "), so the static problem has no unique solution; hold "
                              "more components (e.g. 'points = X,Y,Z: xyz')");
+  // why: assembly and the AMG solve of a large mesh take minutes; say what is running
+  Timer phase;
+  pcout << "FEM static: assembling ..." << std::endl;
   problem.assemble_system(/*condense=*/true);
+  pcout << "FEM static: assembled in " << phase.wall_time() << " s; solving (CG + BoomerAMG) ..."
+        << std::endl;
+  phase.restart();
   const unsigned int iterations = problem.solve();
-  pcout << "FEM static: CG + BoomerAMG converged in " << iterations << " iterations" << std::endl;
+  pcout << "FEM static: CG + BoomerAMG converged in " << iterations << " iterations, "
+        << phase.wall_time() << " s" << std::endl;
 
   nlohmann::json summary;
   summary["n_dofs"] = problem.n_dofs();
@@ -115,7 +145,7 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   }
   if (p.write_vtu)
     problem.output_results(output_dir, 0, 0.0);
-  problem.timer().print_wall_time_statistics(comm);
+  write_timer_log(problem.timer(), output_dir, comm);
   return summary;
 }
 // Explicit dynamics: n steps of size factor * dt_stable; history.csv with the probe
@@ -234,7 +264,7 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     summary["natural_frequency"] = 1.0 / (2.0 * half_period);
     summary["zero_crossings"] = crossings.size();
   }
-  problem.timer().print_wall_time_statistics(comm);
+  write_timer_log(problem.timer(), output_dir, comm);
   return summary;
 }
 } // namespace

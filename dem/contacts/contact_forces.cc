@@ -88,9 +88,7 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
   const auto& prev = list_.previous_index();
   std::swap(xi_, xi_old_), std::swap(theta_, theta_old_);
   std::swap(kt_, kt_old_), std::swap(kr_, kr_old_);
-  xi_.resize(np), theta_.resize(np), kt_.resize(np), kr_.resize(np), pair_bond_.resize(np);
-  const auto& first = list_.first();
-  const auto& second = list_.second();
+  xi_.resize(np), theta_.resize(np), kt_.resize(np), kr_.resize(np);
   for (std::size_t k = 0; k < np; ++k)
   {
     const std::int32_t o = prev[k];
@@ -98,13 +96,8 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
     theta_[k] = o >= 0 ? theta_old_[std::size_t(o)] : Vec3::Zero();
     kt_[k] = o >= 0 ? kt_old_[std::size_t(o)] : 0.0;
     kr_[k] = o >= 0 ? kr_old_[std::size_t(o)] : 0.0;
-    std::int32_t bond = -1;
-    const auto i = std::size_t(first[k]);
-    for (std::int32_t q = bond_start_[i]; q < bond_start_[i + 1]; ++q)
-      if (bond_partner_[std::size_t(q)] == second[k])
-        bond = bond_index_[std::size_t(q)];
-    pair_bond_[k] = bond;
   }
+  link_pairs_to_bonds();
 
   // Sphere-wall candidates: gap below the skin; sorted by (wall, particle) and merged with the
   // previous candidates to carry their springs over.

@@ -45,6 +45,10 @@ public:
   void add_energy(EnergyBalance& e) const override;
   /// Stability limit of the contacts' springs (see contact_forces.cc).
   double critical_time_step(const ParticleStore& p) const override;
+  /// Checkpoints (contact_state.cc): the Verlet list, every contact's springs, the wall
+  /// candidates, the energy sums, the monitor and the platens' peak.
+  bool checkpointable() const override { return true; }
+  void visit_state(StateArchive& a) override;
 
   const ContactConfig& material() const { return material_; }
   /// Contacts (pairs and sphere-wall) that touched at the last step.
@@ -75,6 +79,8 @@ private:
   void compute(ParticleStore& p, double time, double dt);
   void rebuild(const ParticleStore& p, double time);
   void update_monitor(const ParticleStore& p, double time, double dt);
+  /// The bond joining each listed pair (pair_bond_), from the bonds of each particle.
+  void link_pairs_to_bonds();
 
   ContactConfig material_;
   std::vector<Wall> walls_;

@@ -10,6 +10,7 @@
 // the list before the build (or -1), so per-contact history (tangential springs) is carried
 // over by one linear merge. Builds reuse their buffers: no allocation once the list has reached
 // its size.
+#include "dem/core/state_archive.h"
 #include "dem/core/types.h"
 #include <cstdint>
 #include <vector>
@@ -39,6 +40,9 @@ public:
   /// For each pair of the current list, its index in the list before the last build, or -1.
   const std::vector<std::int32_t>& previous_index() const { return previous_; }
   long builds() const { return builds_; }
+  /// Checkpoints: the pairs and the positions at the last build (the rest is scratch of a
+  /// build), so that a restored list rebuilds at the same step as the original.
+  void visit_state(StateArchive& a);
 
 private:
   double skin_;

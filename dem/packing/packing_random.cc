@@ -3,6 +3,7 @@
 // (stiffness 1, unit masses): FIRE only needs a consistent gradient, not physical dynamics, so
 // the time step is dimensionless and independent of the sphere size.
 #include "dem/packing/packing_random.h"
+#include "dem/core/progress.h"
 #include "dem/packing/cell_list.h"
 #include <algorithm>
 #include <chrono>
@@ -419,11 +420,20 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
   RandomPackingReport rep;
 
   long it = 0;
+  ProgressClock progress; // a line every 2 s of a long packing (dem/core/progress.h)
   auto step = [&]
   {
     if (++it > set.max_iterations)
       throw InputError("Particles/max iterations: the random packing did not converge in " +
                        std::to_string(set.max_iterations) + " iterations");
+    if (it % 256 == 0 && progress.due())
+    {
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "random packing: %zu spheres, iteration %ld, radius scale %.4f, %.0f s",
+                    pk.size(), it, pk.scale(), progress.elapsed());
+      report_progress(line);
+    }
     return pk.forces();
   };
   // Grows until s = 1 or until growth stalls (jammed), then relaxes at fixed size, shrinking

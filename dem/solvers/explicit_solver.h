@@ -76,6 +76,15 @@ public:
   /// Latest end of any load ramp: after it, loads are constant.
   double last_ramp_end() const;
 
+  /// Checkpoints (dem/core/state_archive.h, docs/checkpoint.md): saves or restores the complete
+  /// state of the run between steps: the particles, the bonds (constants, state, damage), time
+  /// and step, the energy accumulators, the support reactions of the last step, the crack log
+  /// and each contribution's state. Restoring needs a solver built from the same case (bonds in
+  /// another order, from another thread count, are matched by their pairs).
+  void visit_state(StateArchive& a);
+  /// Whether every contribution can be checkpointed.
+  bool checkpointable() const;
+
   /// Adds forces beside the bonds (contacts, walls, coupling; step_contribution.h). The
   /// contribution must outlive the solver; add before the first step.
   void add_contribution(StepContribution* contribution)

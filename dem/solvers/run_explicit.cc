@@ -1,10 +1,23 @@
 #include "dem/solvers/run_explicit.h"
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <numeric>
 
 namespace dembridge::dem
 {
+void RunProgress::visit_state(StateArchive& a)
+{
+  StateGroup group(a, "run");
+  a.io("worst_error", worst_error);
+  a.io("largest_seen", largest_seen);
+  a.io("frequency_time", frequency_time);
+  a.io("frequency_displacement", frequency_displacement);
+  a.io("next_checkpoint_time", next_checkpoint_time);
+  if (a.loading() && frequency_time.size() != frequency_displacement.size())
+    throw InputError(a.where() + "frequency_time: not as long as 'frequency_displacement'");
+}
+
 std::optional<double> oscillation_frequency(const std::vector<double>& t,
                                             const std::vector<double>& u)
 {
@@ -47,7 +60,11 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
   for (const auto& l : model.loads)
     if (std::isfinite(l.end_time))
       loads_end = std::max(loads_end, l.end_time);
-  std::vector<double> ft, fu;
+  RunProgress progress;
+  progress.next_checkpoint_time = sched.checkpoint_interval;
+  observer.on_start(solver, progress); // a resumed run restores the state here
+  std::vector<double>& ft = progress.frequency_time;
+  std::vector<double>& fu = progress.frequency_displacement;
   const long expected = long(std::min(double(c.run.max_steps), c.run.end_time / model.time_step));
   if (frequency_group >= 0)
   {
@@ -55,13 +72,15 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     fu.reserve(ft.capacity());
   }
 
-  double worst_error = 0, largest_seen = 0;
+  double& worst_error = progress.worst_error;
+  double& largest_seen = progress.largest_seen;
   auto track_energy = [&](const ExplicitSolver& s)
   {
     largest_seen = std::max(largest_seen, s.energy().largest());
     if (largest_seen > 0)
       worst_error = std::max(worst_error, s.energy().error() / largest_seen);
   };
+  auto last_checkpoint = start;
 
   // State at t = 0: one recording evaluation without advancing is not possible with a
   // leapfrog state, so the first record is after step 1.
@@ -115,6 +134,27 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     }
     if (stop)
       break;
+    // Checkpoints between steps, after the step's records: on simulated time (reproducible
+    // steps) or on wall time.
+    bool checkpoint = false;
+    if (sched.checkpoint_interval > 0 &&
+        solver.time() + 0.5 * model.time_step >= progress.next_checkpoint_time)
+    {
+      checkpoint = true;
+      while (progress.next_checkpoint_time <= solver.time() + 0.5 * model.time_step)
+        progress.next_checkpoint_time += sched.checkpoint_interval;
+    }
+    if (sched.checkpoint_wall_interval > 0 &&
+        std::chrono::duration<double>(now - last_checkpoint).count() >=
+            sched.checkpoint_wall_interval)
+      checkpoint = true;
+    if (checkpoint)
+    {
+      observer.on_checkpoint(solver, progress);
+      last_checkpoint = clock::now();
+    }
+    if (sched.kill_after_step > 0 && solver.steps() == sched.kill_after_step)
+      std::raise(SIGKILL);
   }
   res.steps = solver.steps();
   res.time = solver.time();

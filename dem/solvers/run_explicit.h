@@ -10,11 +10,27 @@
 
 namespace dembridge::dem
 {
+/// What the driver itself carries from step to step (beside the solver): the energy balance's
+/// worst error so far, the sampled oscillation, the next checkpoint time. Part of a checkpoint.
+struct RunProgress
+{
+  double worst_error = 0, largest_seen = 0;
+  std::vector<double> frequency_time, frequency_displacement;
+  double next_checkpoint_time = 0; ///< s; 0 until the first checkpoint is scheduled
+  void visit_state(StateArchive& a);
+};
+
 /// Receives what the run produces; the app implements it (CSV, VTU, console).
 class RunObserver
 {
 public:
   virtual ~RunObserver() = default;
+  /// Once, before the first step, with the solver in its final form: a resumed run restores
+  /// the solver's and the progress' state here (visit_state).
+  virtual void on_start(ExplicitSolver&, RunProgress&) {}
+  /// When a checkpoint is due (RunSchedule), between steps: save the solver's and the
+  /// progress' state.
+  virtual void on_checkpoint(ExplicitSolver&, RunProgress&) {}
   virtual void on_record(const ExplicitSolver&) {}   ///< energies and bond forces are fresh
   virtual void on_snapshot(const ExplicitSolver&) {} ///< likewise, at snapshot steps
   virtual void on_progress(const ExplicitSolver&, double /*fraction*/, double /*steps_per_s*/,
@@ -25,9 +41,14 @@ public:
 
 struct RunSchedule
 {
-  long record_interval = 100;  ///< steps between history records
-  long snapshot_interval = 0;  ///< steps between snapshots; 0: first and last only
-  double progress_seconds = 2; ///< wall time between progress reports
+  long record_interval = 100;          ///< steps between history records
+  long snapshot_interval = 0;          ///< steps between snapshots; 0: first and last only
+  double progress_seconds = 2;         ///< wall time between progress reports
+  double checkpoint_interval = 0;      ///< simulated time between checkpoints (s); 0: none
+  double checkpoint_wall_interval = 0; ///< wall time between checkpoints (s); 0: none
+  /// Tests of checkpoint and restart: after this step the process kills itself (SIGKILL, as
+  /// `kill -9` would); 0: never.
+  long kill_after_step = 0;
 };
 
 struct RunResult

@@ -12,7 +12,9 @@
 // them to the balance, dem/core/energy.h).
 #include "dem/core/energy.h"
 #include "dem/core/particle_store.h"
+#include "dem/core/state_archive.h"
 #include <limits>
+#include <stdexcept>
 
 namespace dembridge::dem
 {
@@ -40,6 +42,13 @@ public:
   virtual double critical_time_step(const ParticleStore& /*p*/) const
   {
     return std::numeric_limits<double>::infinity();
+  }
+  /// Checkpoints: whether visit_state saves and restores all of this contribution's state.
+  virtual bool checkpointable() const { return false; }
+  /// Saves or restores the contribution's state between steps (dem/core/state_archive.h).
+  virtual void visit_state(StateArchive& /*a*/)
+  {
+    throw std::logic_error("this step contribution cannot be checkpointed");
   }
 };
 } // namespace dembridge::dem

@@ -1,0 +1,544 @@
+#include "checkpoint.h"
+#include "provenance.h"
+#include "version.h"
+#include <array>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace dembridge::app
+{
+namespace fs = std::filesystem;
+using dem::InputError;
+
+namespace
+{
+static_assert(sizeof(dem::Vec3) == 3 * sizeof(double), "Vec3 rows are written as they lie");
+
+/// Closes an HDF5 handle when it goes out of scope.
+class Handle
+{
+public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
+  ~Handle()
+  {
+    if (id_ >= 0)
+      close_(id_);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  hid_t get() const { return id_; }
+  bool ok() const { return id_ >= 0; }
+
+private:
+  hid_t id_;
+  Closer close_;
+};
+
+void quiet_hdf5()
+{
+  static const bool done = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
+  (void)done;
+}
+
+/// The archive on an open HDF5 file: groups are HDF5 groups, arrays datasets of their
+/// element type (little-endian in the file, converted on reading), Vec3 and Quat arrays
+/// two-dimensional (n x 3, n x 4), strings fixed-length.
+class Hdf5Archive : public dem::StateArchive
+{
+public:
+  Hdf5Archive(hid_t file, bool loading, std::string name)
+      : loading_(loading), name_(std::move(name))
+  {
+    stack_.push_back(file);
+  }
+  ~Hdf5Archive() override
+  {
+    for (std::size_t k = 1; k < stack_.size(); ++k)
+      H5Gclose(stack_[k]);
+  }
+
+  bool loading() const override { return loading_; }
+  std::string where() const override
+  {
+    std::string path = "/";
+    for (const auto& p : path_)
+      path += p + "/";
+    return name_ + ": " + path;
+  }
+  void enter(const std::string& group) override
+  {
+    const hid_t here = stack_.back();
+    hid_t g;
+    if (loading_)
+    {
+      if (H5Lexists(here, group.c_str(), H5P_DEFAULT) <= 0)
+        missing(group + "/");
+      g = H5Gopen2(here, group.c_str(), H5P_DEFAULT);
+    }
+    else
+      g = H5Gcreate2(here, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0)
+      failed(group + "/");
+    stack_.push_back(g);
+    path_.push_back(group);
+  }
+  void leave() override
+  {
+    H5Gclose(stack_.back());
+    stack_.pop_back();
+    path_.pop_back();
+  }
+
+  void io(const std::string& n, std::vector<double>& v) override
+  {
+    array(n, v, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5T_FLOAT, 1);
+  }
+  void io(const std::string& n, std::vector<std::int32_t>& v) override
+  {
+    array(n, v, H5T_STD_I32LE, H5T_NATIVE_INT32, H5T_INTEGER, 1);
+  }
+  void io(const std::string& n, std::vector<std::int64_t>& v) override
+  {
+    array(n, v, H5T_STD_I64LE, H5T_NATIVE_INT64, H5T_INTEGER, 1);
+  }
+  void io(const std::string& n, std::vector<std::uint8_t>& v) override
+  {
+    array(n, v, H5T_STD_U8LE, H5T_NATIVE_UINT8, H5T_INTEGER, 1);
+  }
+  void io(const std::string& n, std::vector<std::uint32_t>& v) override
+  {
+    array(n, v, H5T_STD_U32LE, H5T_NATIVE_UINT32, H5T_INTEGER, 1);
+  }
+  void io(const std::string& n, std::vector<dem::Vec3>& v) override
+  {
+    array(n, v, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5T_FLOAT, 3);
+  }
+  void io(const std::string& n, std::vector<dem::Quat>& v) override
+  {
+    // Eigen keeps (x, y, z, w); the file has (w, x, y, z), the usual order for scripts
+    std::vector<double> wxyz(4 * v.size());
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      wxyz[4 * k] = v[k].w(), wxyz[4 * k + 1] = v[k].x();
+      wxyz[4 * k + 2] = v[k].y(), wxyz[4 * k + 3] = v[k].z();
+    }
+    std::vector<std::array<double, 4>> rows(v.size());
+    std::memcpy(rows.data(), wxyz.data(), wxyz.size() * sizeof(double));
+    array(n, rows, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5T_FLOAT, 4);
+    if (loading_)
+    {
+      v.resize(rows.size());
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        v[k] = dem::Quat(rows[k][0], rows[k][1], rows[k][2], rows[k][3]);
+    }
+  }
+  void io(const std::string& n, std::string& text) override
+  {
+    const hid_t here = stack_.back();
+    if (!loading_)
+    {
+      Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+      H5Tset_size(type.get(), std::max<std::size_t>(1, text.size()));
+      H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+      Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+      Handle set(H5Dcreate2(here, n.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                            H5P_DEFAULT),
+                 H5Dclose);
+      std::string padded = text;
+      padded.resize(std::max<std::size_t>(1, text.size()), '\0');
+      if (!set.ok() ||
+          H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()) < 0)
+        failed(n);
+      return;
+    }
+    Handle set = open(n);
+    Handle type(H5Dget_type(set.get()), H5Tclose);
+    if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+      wrong(n, "a fixed-length string");
+    std::string buffer(H5Tget_size(type.get()), '\0');
+    Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(memory.get(), buffer.size());
+    H5Tset_strpad(memory.get(), H5T_STR_NULLPAD);
+    if (H5Dread(set.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0)
+      failed(n);
+    buffer.erase(buffer.find_last_not_of('\0') + 1);
+    text = buffer;
+  }
+
+private:
+  [[noreturn]] void missing(const std::string& n) const
+  {
+    throw InputError(where() + n + ": missing from the checkpoint (a file of another format?)");
+  }
+  [[noreturn]] void wrong(const std::string& n, const std::string& expected) const
+  {
+    throw InputError(where() + n + ": expected " + expected + " in the checkpoint");
+  }
+  [[noreturn]] void failed(const std::string& n) const
+  {
+    throw std::runtime_error(where() + n + ": HDF5 could not " +
+                             (loading_ ? "read it" : "write it (disk full?)"));
+  }
+  Handle open(const std::string& n)
+  {
+    const hid_t here = stack_.back();
+    if (H5Lexists(here, n.c_str(), H5P_DEFAULT) <= 0)
+      missing(n);
+    Handle set(H5Dopen2(here, n.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!set.ok())
+      failed(n);
+    return set;
+  }
+
+  /// An array of T, each element `columns` values of the memory type (one row).
+  template <class T>
+  void array(const std::string& n, std::vector<T>& v, hid_t file_type, hid_t memory_type,
+             H5T_class_t type_class, hsize_t columns)
+  {
+    // rows of plain doubles or integers (Eigen's Vector3d is three doubles without padding)
+    static_assert(sizeof(T) % sizeof(double) == 0 || std::is_integral_v<T>);
+    const hsize_t rank = columns > 1 ? 2 : 1;
+    if (!loading_)
+    {
+      const hsize_t dims[2] = {hsize_t(v.size()), columns};
+      Handle space(H5Screate_simple(int(rank), dims, nullptr), H5Sclose);
+      Handle set(H5Dcreate2(stack_.back(), n.c_str(), file_type, space.get(), H5P_DEFAULT,
+                            H5P_DEFAULT, H5P_DEFAULT),
+                 H5Dclose);
+      if (!set.ok() || (!v.empty() && H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL,
+                                               H5P_DEFAULT, v.data()) < 0))
+        failed(n);
+      return;
+    }
+    Handle set = open(n);
+    Handle type(H5Dget_type(set.get()), H5Tclose);
+    Handle space(H5Dget_space(set.get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    const int found_rank = H5Sget_simple_extent_ndims(space.get());
+    if (H5Tget_class(type.get()) != type_class || found_rank != int(rank))
+      wrong(n, std::string(type_class == H5T_FLOAT ? "floating-point" : "integer") + " data of " +
+                   std::to_string(rank) + " dimension(s)");
+    H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+    if (rank == 2 && dims[1] != columns)
+      wrong(n, std::to_string(columns) + " columns");
+    v.resize(std::size_t(dims[0]));
+    if (!v.empty() && H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+      failed(n);
+  }
+
+  bool loading_;
+  std::string name_;
+  std::vector<hid_t> stack_;
+  std::vector<std::string> path_;
+};
+
+void visit_header(dem::StateArchive& a, CheckpointHeader& h)
+{
+  dem::StateGroup group(a, "header");
+  a.io("step", h.step);
+  a.io("time", h.time);
+  a.io("dembridge_version", h.version);
+  a.io("git_commit", h.git_commit);
+  a.io("written_at", h.written_at);
+  a.io("case", h.case_name);
+  a.io("parameters", h.case_text);
+}
+
+void write_string_attribute(hid_t at, const char* name, const std::string& value)
+{
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.size());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(at, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!attr.ok() || H5Awrite(attr.get(), type.get(), value.data()) < 0)
+    throw std::runtime_error(std::string("checkpoint: cannot write the attribute ") + name);
+}
+
+/// Root attributes "format" and "format_version"; InputError when absent or another.
+void check_format(hid_t file, const std::string& name)
+{
+  if (H5Aexists(file, "format") <= 0 || H5Aexists(file, "format_version") <= 0)
+    throw InputError(name + ": not a dembridge checkpoint (no 'format' attribute)");
+  {
+    Handle attr(H5Aopen(file, "format", H5P_DEFAULT), H5Aclose);
+    Handle type(H5Aget_type(attr.get()), H5Tclose);
+    std::string value(H5Tget_class(type.get()) == H5T_STRING ? H5Tget_size(type.get()) : 0, '\0');
+    Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(memory.get(), std::max<std::size_t>(1, value.size()));
+    if (value.empty() || H5Aread(attr.get(), memory.get(), value.data()) < 0)
+      throw InputError(name + ": not a dembridge checkpoint (unreadable 'format')");
+    value.erase(value.find_last_not_of('\0') + 1);
+    if (value != checkpoint_format_name)
+      throw InputError(name + ": not a dembridge checkpoint (format '" + value + "')");
+  }
+  Handle attr(H5Aopen(file, "format_version", H5P_DEFAULT), H5Aclose);
+  std::int32_t version = -1;
+  if (H5Aread(attr.get(), H5T_NATIVE_INT32, &version) < 0)
+    throw InputError(name + ": unreadable 'format_version'");
+  if (version != checkpoint_format_version)
+    throw InputError(name + ": checkpoint format version " + std::to_string(version) +
+                     ", this dembridge reads version " + std::to_string(checkpoint_format_version) +
+                     " only");
+}
+
+Handle open_checkpoint(const fs::path& file)
+{
+  quiet_hdf5();
+  const std::string name = file.string();
+  if (!fs::is_regular_file(file))
+    throw InputError(name + ": no checkpoint there (Output/checkpoint interval writes one)");
+  if (H5Fis_hdf5(name.c_str()) <= 0)
+    throw InputError(name + ": not an HDF5 file");
+  Handle h(H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!h.ok())
+    throw InputError(name + ": HDF5 cannot open it");
+  check_format(h.get(), name);
+  return h;
+}
+
+/// "Section/key" -> value of a short PRM text.
+std::map<std::string, std::string> entries(const std::string& text)
+{
+  std::map<std::string, std::string> out;
+  std::vector<std::string> sections;
+  std::istringstream in(text);
+  auto trim = [](const std::string& s)
+  {
+    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  for (std::string line; std::getline(in, line);)
+  {
+    const std::string t = trim(line);
+    if (t.rfind("subsection ", 0) == 0)
+      sections.push_back(trim(t.substr(11)));
+    else if (t == "end" && !sections.empty())
+      sections.pop_back();
+    else if (t.rfind("set ", 0) == 0 && t.find('=') != std::string::npos)
+    {
+      std::string key;
+      for (const auto& s : sections)
+        key += s + "/";
+      key += trim(t.substr(4, t.find('=') - 4));
+      out[key] = trim(t.substr(t.find('=') + 1));
+    }
+  }
+  return out;
+}
+
+void fsync_path(const fs::path& path)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+    return;
+  ::fsync(fd);
+  ::close(fd);
+}
+} // namespace
+
+std::string checkpoint_case_text(const dealii::ParameterHandler& prm, const fs::path& case_dir)
+{
+  const std::string full = parameters_file_text(prm, case_dir, "");
+  std::istringstream in(full);
+  std::ostringstream out;
+  std::vector<std::string> sections;
+  for (std::string line; std::getline(in, line);)
+  {
+    const auto b = line.find_first_not_of(" \t");
+    const std::string t = b == std::string::npos ? "" : line.substr(b);
+    if (t.rfind("subsection ", 0) == 0)
+      sections.push_back(t.substr(11));
+    else if (t == "end" && !sections.empty())
+      sections.pop_back();
+    else if (t.rfind("set ", 0) == 0 && sections.size() == 1)
+    {
+      const std::string key = t.substr(4, t.find('=') - 4);
+      auto is = [&](const char* s, const char* k)
+      { return sections[0] == s && key.rfind(k, 0) == 0; };
+      if (is("Output", "checkpoint interval ") || is("Output", "checkpoint wall interval ") ||
+          is("Simulation", "threads "))
+        continue;
+    }
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
+                                      const std::string& case_file, std::string& output_dir,
+                                      const std::string& resume_dir)
+{
+  CheckpointSettings s;
+  s.case_name = fs::path(case_file).filename().string();
+  s.resume = !resume_dir.empty();
+  if (s.resume)
+  {
+    if (!output_dir.empty() && fs::weakly_canonical(output_dir) != fs::weakly_canonical(resume_dir))
+      throw InputError("--resume: the run continues in its own folder " + resume_dir +
+                       " (drop --output-dir " + output_dir + ")");
+    output_dir = resume_dir;
+  }
+  else if (output_dir.empty())
+    output_dir = (fs::path("output") / fs::path(case_file).stem()).string();
+  const bool dem = prm.get("Mode") == "dem";
+  if (!dem && s.resume)
+    throw InputError("--resume: only DEM runs (Mode = dem) are checkpointed");
+  if (!dem)
+    return s;
+  s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
+  s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
+  if (!s.resume)
+  {
+    if (fs::exists(s.file))
+    {
+      std::string at;
+      try
+      {
+        const CheckpointHeader h = read_checkpoint_header(s.file);
+        at = " (step " + std::to_string(h.step) + ", t = " + std::to_string(h.time) + " s)";
+      }
+      catch (const std::exception&)
+      {
+      }
+      throw InputError(s.file.string() + ": the folder holds the checkpoint of an interrupted " +
+                       "run" + at + "; continue it with --resume " + output_dir +
+                       ", or delete the file to start afresh");
+    }
+    return s;
+  }
+  const CheckpointHeader h = read_checkpoint_header(s.file);
+  check_same_case(h, s.case_text, s.file);
+  s.resumed_step = h.step;
+  s.resumed_time = h.time;
+  return s;
+}
+
+void finish_checkpoints(const CheckpointSettings& s)
+{
+  if (s.file.empty())
+    return;
+  std::error_code ignored;
+  fs::remove(s.file, ignored);
+  fs::remove(s.file.string() + ".tmp", ignored);
+}
+
+CheckpointHeader read_checkpoint_header(const fs::path& file)
+{
+  Handle h = open_checkpoint(file);
+  Hdf5Archive archive(h.get(), true, file.filename().string());
+  CheckpointHeader header;
+  visit_header(archive, header);
+  return header;
+}
+
+void check_same_case(const CheckpointHeader& header, const std::string& case_text,
+                     const fs::path& file)
+{
+  if (header.case_text == case_text)
+    return;
+  const auto there = entries(header.case_text), here = entries(case_text);
+  std::string what;
+  int listed = 0;
+  auto add = [&](const std::string& key, const std::string& a, const std::string& b)
+  {
+    if (listed++ < 3)
+      what +=
+          std::string(what.empty() ? "" : "; ") + key + " is '" + a + "' there, '" + b + "' here";
+  };
+  for (const auto& [key, value] : there)
+  {
+    const auto it = here.find(key);
+    if (it == here.end())
+      add(key, value, "(no such entry)");
+    else if (it->second != value)
+      add(key, value, it->second);
+  }
+  for (const auto& [key, value] : here)
+    if (!there.count(key))
+      add(key, "(no such entry)", value);
+  if (what.empty())
+    what = "the parameter files differ in their comments or order";
+  throw InputError(file.string() + ": the checkpoint is of another case (" + header.case_name +
+                   "): " + what);
+}
+
+void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
+                      const std::function<void(dem::StateArchive&)>& visit)
+{
+  quiet_hdf5();
+  static int written = 0;
+  static const int kill_at = []
+  {
+    const char* v = std::getenv("DEMBRIDGE_TEST_KILL_IN_CHECKPOINT");
+    return v ? std::atoi(v) : 0;
+  }();
+  ++written;
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    Handle h(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!h.ok())
+      throw std::runtime_error(tmp.string() + ": cannot create the checkpoint");
+    write_string_attribute(h.get(), "format", checkpoint_format_name);
+    {
+      Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+      Handle attr(H5Acreate2(h.get(), "format_version", H5T_STD_I32LE, space.get(), H5P_DEFAULT,
+                             H5P_DEFAULT),
+                  H5Aclose);
+      const std::int32_t version = checkpoint_format_version;
+      if (!attr.ok() || H5Awrite(attr.get(), H5T_NATIVE_INT32, &version) < 0)
+        throw std::runtime_error(tmp.string() + ": cannot write the format version");
+    }
+    Hdf5Archive archive(h.get(), false, file.filename().string());
+    CheckpointHeader copy = header;
+    visit_header(archive, copy);
+    if (written == kill_at)
+    {
+      H5Fflush(h.get(), H5F_SCOPE_GLOBAL); // half a checkpoint on the disk, then kill -9
+      std::raise(SIGKILL);
+    }
+    visit(archive);
+    if (H5Fflush(h.get(), H5F_SCOPE_GLOBAL) < 0)
+      throw std::runtime_error(tmp.string() + ": cannot write the checkpoint (disk full?)");
+  }
+  fsync_path(tmp); // the data is on the disk before the name points at it
+  fs::rename(tmp, file);
+  fsync_path(file.parent_path());
+}
+
+void read_checkpoint(const fs::path& file, const std::function<void(dem::StateArchive&)>& visit)
+{
+  Handle h = open_checkpoint(file);
+  Hdf5Archive archive(h.get(), true, file.filename().string());
+  visit(archive);
+}
+
+void visit_file_list(dem::StateArchive& a, const std::string& name,
+                     std::vector<std::pair<double, std::string>>& files)
+{
+  std::vector<double> times;
+  std::string names;
+  for (const auto& [t, f] : files)
+    times.push_back(t), names += f + "\n";
+  a.io(name + "_times", times);
+  a.io(name + "_files", names);
+  if (!a.loading())
+    return;
+  files.clear();
+  std::istringstream in(names);
+  std::string f;
+  for (double t : times)
+  {
+    if (!std::getline(in, f))
+      throw InputError(a.where() + name + "_files: fewer names than times");
+    files.emplace_back(t, f);
+  }
+}
+} // namespace dembridge::app

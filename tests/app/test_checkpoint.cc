@@ -1,0 +1,248 @@
+// The checkpoint file (app/checkpoint.h, docs/checkpoint.md): every field type survives a write
+// and a read bit for bit (empty arrays, quaternions, strings with NULs inside are not allowed,
+// long texts), the header is read back, a file of another format version, no HDF5 file or no
+// checkpoint is refused with the reason, a case that differs is refused naming the entries,
+// the write is atomic (only the final name after a write; a stale .tmp is replaced), and a
+// missing field is named.
+#include "app/checkpoint.h"
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <limits>
+
+using namespace dembridge;
+namespace fs = std::filesystem;
+
+namespace
+{
+fs::path scratch(const std::string& name)
+{
+  const fs::path dir = fs::temp_directory_path() / "dembridge_test_checkpoint";
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+struct Fields
+{
+  std::vector<double> d{1.0, -0.0, std::numeric_limits<double>::denorm_min(), 1e308,
+                        std::numeric_limits<double>::infinity()};
+  std::vector<std::int32_t> i32{-7, 0, 2147483647};
+  std::vector<std::int64_t> i64{-(1LL << 62), 3};
+  std::vector<std::uint8_t> u8{0, 255};
+  std::vector<std::uint32_t> u32{4294967295u};
+  std::vector<dem::Vec3> v3{{1, 2, 3}, {0.1, 0.2, 0.3}};
+  std::vector<dem::Quat> q{dem::Quat(0.5, -0.5, 0.5, 0.5), dem::Quat::Identity()};
+  std::vector<double> empty;
+  std::string text = "line 1\nline 2, with = and \"quotes\"";
+  std::string empty_text;
+  double x = 0.1 + 0.2;
+  long n = 1234567890123L;
+  bool flag = true;
+
+  void visit(dem::StateArchive& a)
+  {
+    dem::StateGroup g(a, "fields");
+    a.io("d", d);
+    a.io("i32", i32);
+    a.io("i64", i64);
+    a.io("u8", u8);
+    a.io("u32", u32);
+    a.io("v3", v3);
+    a.io("q", q);
+    a.io("empty", empty);
+    {
+      dem::StateGroup inner(a, "inner");
+      a.io("text", text);
+      a.io("empty_text", empty_text);
+    }
+    a.io("x", x);
+    a.io("n", n);
+    a.io("flag", flag);
+  }
+};
+
+app::CheckpointHeader header()
+{
+  app::CheckpointHeader h;
+  h.step = 42;
+  h.time = 1.25e-3;
+  h.version = "0.1.0";
+  h.git_commit = "abc";
+  h.written_at = "2026-01-01T00:00:00Z";
+  h.case_name = "case.prm";
+  h.case_text = "subsection Simulation\n  set end time = 0.01\nend\n";
+  return h;
+}
+
+/// Rewrites the root attribute format_version of @p file.
+void set_format_version(const fs::path& file, std::int32_t version)
+{
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
+  ASSERT_GE(attr, 0);
+  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT32, &version), 0);
+  H5Aclose(attr);
+  H5Fclose(f);
+}
+
+std::string error_of(const std::function<void()>& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const dem::InputError& e)
+  {
+    return e.what();
+  }
+  return "(no error)";
+}
+} // namespace
+
+TEST(Checkpoint, EveryFieldTypeRoundTripsBitForBit)
+{
+  const fs::path file = scratch("round_trip.h5");
+  Fields written;
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { written.visit(a); });
+  EXPECT_TRUE(fs::exists(file));
+  EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+
+  Fields read;
+  read.d.clear(), read.i32 = {1}, read.i64.clear(), read.u8.clear(), read.u32.clear();
+  read.v3.clear(), read.q.clear(), read.empty = {5.0}, read.text.clear(), read.empty_text = "x";
+  read.x = 0, read.n = 0, read.flag = false;
+  app::read_checkpoint(file, [&](dem::StateArchive& a) { read.visit(a); });
+  ASSERT_EQ(read.d.size(), written.d.size());
+  for (std::size_t k = 0; k < read.d.size(); ++k)
+    EXPECT_EQ(std::memcmp(&read.d[k], &written.d[k], sizeof(double)), 0) << k; // -0.0 too
+  EXPECT_EQ(read.i32, written.i32);
+  EXPECT_EQ(read.i64, written.i64);
+  EXPECT_EQ(read.u8, written.u8);
+  EXPECT_EQ(read.u32, written.u32);
+  EXPECT_EQ(read.v3, written.v3);
+  ASSERT_EQ(read.q.size(), written.q.size());
+  for (std::size_t k = 0; k < read.q.size(); ++k)
+    EXPECT_EQ(read.q[k].coeffs(), written.q[k].coeffs());
+  EXPECT_TRUE(read.empty.empty());
+  EXPECT_EQ(read.text, written.text);
+  EXPECT_EQ(read.empty_text, "");
+  EXPECT_EQ(read.x, written.x);
+  EXPECT_EQ(read.n, written.n);
+  EXPECT_EQ(read.flag, true);
+
+  const app::CheckpointHeader h = app::read_checkpoint_header(file);
+  EXPECT_EQ(h.step, 42);
+  EXPECT_EQ(h.time, 1.25e-3);
+  EXPECT_EQ(h.case_text, header().case_text);
+  EXPECT_EQ(h.case_name, "case.prm");
+}
+
+TEST(Checkpoint, QuaternionsAreStoredWFirst)
+{
+  const fs::path file = scratch("quaternion.h5");
+  std::vector<dem::Quat> q{dem::Quat(0.1, 0.2, 0.3, 0.4)}; // w, x, y, z
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { a.io("q", q); });
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t set = H5Dopen2(f, "q", H5P_DEFAULT);
+  double row[4] = {};
+  ASSERT_GE(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, row), 0);
+  H5Dclose(set);
+  H5Fclose(f);
+  EXPECT_EQ(row[0], 0.1);
+  EXPECT_EQ(row[1], 0.2);
+  EXPECT_EQ(row[3], 0.4);
+}
+
+TEST(Checkpoint, OtherFormatVersionIsRefused)
+{
+  const fs::path file = scratch("version.h5");
+  Fields f;
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { f.visit(a); });
+  set_format_version(file, app::checkpoint_format_version + 1);
+  const std::string what = error_of([&] { app::read_checkpoint_header(file); });
+  EXPECT_NE(what.find("checkpoint format version 2, this dembridge reads version 1 only"),
+            std::string::npos)
+      << what;
+  EXPECT_EQ(what.rfind(file.string(), 0), 0u) << what;
+}
+
+TEST(Checkpoint, NotACheckpointIsRefused)
+{
+  const fs::path text = scratch("not_hdf5.h5");
+  std::ofstream(text) << "hello\n";
+  EXPECT_NE(error_of([&] { app::read_checkpoint_header(text); }).find("not an HDF5 file"),
+            std::string::npos);
+  const fs::path none = scratch("does_not_exist.h5");
+  fs::remove(none);
+  EXPECT_NE(error_of([&] { app::read_checkpoint_header(none); }).find("no checkpoint there"),
+            std::string::npos);
+  // an HDF5 file of something else
+  const fs::path other = scratch("other.h5");
+  H5Fclose(H5Fcreate(other.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  EXPECT_NE(error_of([&] { app::read_checkpoint_header(other); })
+                .find("not a dembridge checkpoint (no 'format' attribute)"),
+            std::string::npos);
+}
+
+TEST(Checkpoint, AnotherCaseIsRefusedNamingTheEntries)
+{
+  const app::CheckpointHeader h = header();
+  EXPECT_NO_THROW(app::check_same_case(h, h.case_text, "cp.h5"));
+  const std::string what = error_of(
+      [&]
+      {
+        app::check_same_case(
+            h, "subsection Simulation\n  set end time = 0.02\nend\nset Mode = dem\n", "cp.h5");
+      });
+  EXPECT_EQ(what, "cp.h5: the checkpoint is of another case (case.prm): Simulation/end time is "
+                  "'0.01' there, '0.02' here; Mode is '(no such entry)' there, 'dem' here");
+}
+
+TEST(Checkpoint, MissingFieldIsNamed)
+{
+  const fs::path file = scratch("missing.h5");
+  app::write_checkpoint(file, header(), [](dem::StateArchive&) {});
+  std::vector<double> v;
+  const std::string what = error_of(
+      [&]
+      {
+        app::read_checkpoint(file,
+                             [&](dem::StateArchive& a)
+                             {
+                               dem::StateGroup g(a, "header");
+                               a.io("velocity", v);
+                             });
+      });
+  EXPECT_EQ(what, "missing.h5: /header/velocity: missing from the checkpoint (a file of another "
+                  "format?)");
+}
+
+TEST(Checkpoint, WriteReplacesAStaleTemporaryAndTheOldFile)
+{
+  const fs::path file = scratch("atomic.h5");
+  std::ofstream(file.string() + ".tmp") << "half a checkpoint of a killed run";
+  Fields f;
+  f.n = 1;
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { f.visit(a); });
+  f.n = 2;
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { f.visit(a); });
+  EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+  Fields read;
+  app::read_checkpoint(file, [&](dem::StateArchive& a) { read.visit(a); });
+  EXPECT_EQ(read.n, 2);
+}
+
+TEST(Checkpoint, SizedArraysMustMatchTheModel)
+{
+  const fs::path file = scratch("sized.h5");
+  std::vector<double> three{1, 2, 3};
+  app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { a.io("radius", three); });
+  std::vector<double> two(2);
+  const std::string what = error_of(
+      [&]
+      { app::read_checkpoint(file, [&](dem::StateArchive& a) { a.io_sized("radius", two); }); });
+  EXPECT_EQ(what, "sized.h5: /radius: 3 entries in the checkpoint, 2 in this model");
+}
