@@ -33,6 +33,11 @@ void declare_coupling_parameters(ParameterHandler& prm)
                     "FE mesh is graded so that cell faces lie on the band's planes.");
   prm.declare_entry("band element size", "0", Double(0),
                     "FE cell size across the band (m); 0: the smallest element size.");
+  prm.declare_entry("far element size", "0", List(Double(0), 1, 3),
+                    "Away from the band the FE cells grow by 'element growth' per cell up to "
+                    "this size (m; one value or x, y, z); 0: every cell of 'element size'.");
+  prm.declare_entry("element growth", "1.2", Double(1, 2),
+                    "Ratio of neighbouring cells' sizes where they grow away from the band.");
   prm.declare_entry("continuum tensor", "closed form",
                     Selection("closed form|periodic|measured|file"),
                     "The continuum's elasticity tensor, from the particle region's packing: "
@@ -104,6 +109,15 @@ coupling::CoupledCase parse_coupled_case(ParameterHandler& prm)
       throw dem::InputError("Coupling/element size: give one value or three (x, y, z)");
   }
   s.band_element_size = prm.get_double("band element size");
+  {
+    const auto sizes = dealii::Utilities::split_string_list(prm.get("far element size"));
+    if (sizes.size() == 2)
+      throw dem::InputError("Coupling/far element size: give one value or three (x, y, z)");
+    for (int d = 0; d < 3; ++d)
+      s.far_element_size[d] =
+          dealii::Utilities::string_to_double(sizes[sizes.size() == 1 ? 0 : d]);
+    s.element_growth = prm.get_double("element growth");
+  }
   if (s.band_element_size == 0)
     s.band_element_size = s.element_size.minCoeff();
   if (!(s.element_size.minCoeff() > 0))

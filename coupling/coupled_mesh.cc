@@ -14,7 +14,8 @@ using namespace dealii;
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      const double band_element_size,
                                      parallel::distributed::Triangulation<3>& tria,
-                                     std::vector<RemovedShare>* removed)
+                                     std::vector<RemovedShare>* removed,
+                                     const Vec3& far_element_size, const double growth)
 {
   if (!(element_size.minCoeff() > 0) || !(band_element_size > 0))
     throw std::runtime_error("Coupling/element size: must be positive");
@@ -39,9 +40,42 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
       for (std::size_t p = 0; p + 1 < planes[d].size(); p += 2)
         band = band || (mid > planes[d][p] && mid < planes[d][p + 1]);
       const double size = band ? band_element_size : element_size[d];
-      const int n = std::max(1, int(std::lround((b - a) / size)));
-      for (int i = 0; i < n; ++i)
-        steps[d].push_back((b - a) / n);
+      auto touches = [&](double x)
+      {
+        return std::any_of(planes[d].begin(), planes[d].end(),
+                           [&](double p) { return std::abs(p - x) < tol; });
+      };
+      const bool from_a = touches(a), from_b = touches(b);
+      if (band || far_element_size[d] <= size || !(from_a || from_b))
+      {
+        const int n = std::max(1, int(std::lround((b - a) / size)));
+        for (int i = 0; i < n; ++i)
+          steps[d].push_back((b - a) / n);
+        continue;
+      }
+      // graded: h, h g, h g^2, ... up to the far size from each end on a band plane, over the
+      // interval (or its half when both ends touch), scaled to fill it exactly
+      const double length = (from_a && from_b) ? 0.5 * (b - a) : b - a;
+      std::vector<double> w;
+      double sum = 0;
+      for (double h = size; sum < length * (1 - 1e-12);
+           h = std::min(h * growth, far_element_size[d]))
+        w.push_back(h), sum += h;
+      if (w.size() > 1 && sum - length > 0.5 * w.back()) // the last cell overshoots: drop it
+        sum -= w.back(), w.pop_back();
+      for (auto& x : w)
+        x *= length / sum;
+      std::vector<double> cells;
+      if (from_a && from_b)
+      {
+        cells = w;
+        cells.insert(cells.end(), w.rbegin(), w.rend());
+      }
+      else if (from_a)
+        cells = w;
+      else
+        cells.assign(w.rbegin(), w.rend());
+      steps[d].insert(steps[d].end(), cells.begin(), cells.end());
     }
   }
   Triangulation<3> box;

@@ -2,7 +2,8 @@
 // The FE mesh of a coupled run: a box graded along each axis so that cell faces lie on the
 // planes of the handshake band (s = 0 and s = L, handshake.h), with element size h_band across the
 // band and h = (h_x, h_y, h_z) elsewhere (each interval between planes gets equal cells of about
-// that size), and the cells of the particle-only region removed (they would carry
+// that size; with a far element size, cells of an interval that touches a band plane grow away
+// from it by a constant ratio per cell up to that size), and the cells of the particle-only region removed (they would carry
 // neither mass nor stiffness: 1 - alpha = 0 there). No hanging nodes.
 // Boundary names: the outer box faces x-min ... z-max (ids 0-5, as fem/mesh.h), and
 // "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
@@ -24,5 +25,7 @@ struct RemovedShare
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      double band_element_size,
                                      dealii::parallel::distributed::Triangulation<3>& tria,
-                                     std::vector<RemovedShare>* removed = nullptr);
+                                     std::vector<RemovedShare>* removed = nullptr,
+                                     const Vec3& far_element_size = Vec3::Zero(),
+                                     double growth = 1.2);
 } // namespace dembridge::coupling

@@ -131,7 +131,8 @@ void CoupledProblem::setup()
       [this, &removed](parallel::distributed::Triangulation<3>& tria)
       {
         return make_coupled_mesh(*handshake_, settings_.element_size, settings_.band_element_size,
-                                 tria, &removed);
+                                 tria, &removed, settings_.far_element_size,
+                                 settings_.element_growth);
       });
   fe_->set_half_step_start(false); // the initial velocity is v^{-1/2}, as for the particles
   fe_->set_mass_damping(settings_.mass_damping);

@@ -68,6 +68,10 @@ struct CouplingSettings
   HandshakeGeometry geometry;
   Vec3 element_size = Vec3::Constant(0.01); ///< FE cell size outside the band (per axis), m
   double band_element_size = 0.01;          ///< FE cell size across the band, m
+  /// Cells grow away from the band by `element_growth` per cell up to this size (per axis, m;
+  /// 0: no growth): a long continuum needs fine cells only near the particles.
+  Vec3 far_element_size = Vec3::Zero();
+  double element_growth = 1.2;
   Voigt6x6 tensor{};                        ///< the continuum's stiffness (Pa)
   Tying tying = Tying::particle;
   ConstraintSolve solve = ConstraintSolve::exact;
