@@ -35,6 +35,12 @@ public:
   {
     if (!root_)
       return;
+    // the load a testing machine would read: the first prescribed motion's group, the force
+    // the prescription exerts on it (its reaction, ExplicitSolver::group_force) along the
+    // motion, and its displacement along it
+    for (const auto& l : problem.model().loads)
+      if (l.prescribes_motion() && l.value.norm() > 0 && load_group_ < 0)
+        load_group_ = l.group, load_direction_ = l.value.normalized();
     history_.open(dir / "history.csv.part");
     if (!history_)
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
@@ -42,7 +48,7 @@ public:
                 "dem_external_work,dem_other_energy,fe_kinetic_energy,fe_strain_energy,"
                 "fe_damping_energy,fe_boundary_work,multiplier_work_particles,"
                 "multiplier_work_fe,energy_balance_error,max_tie_gap,n_broken_bonds,"
-                "band_failure_index";
+                "band_failure_index,load,load_displacement";
     for (const auto& g : problem.model().groups)
       for (const char* q : {"ux", "uy", "uz"})
         history_ << ',' << g.name << '_' << q;
@@ -67,6 +73,16 @@ public:
              << e.multiplier_work_fe << ',' << e.balance_error() << ',' << problem.max_tie_gap()
              << ',' << problem.particle_solver()->n_broken_bonds() << ','
              << problem.band_damage().max_failure_index;
+    {
+      const auto* s = problem.particle_solver();
+      const double load =
+          load_group_ >= 0 ? s->group_force(load_group_).dot(load_direction_) : 0.0;
+      const double u =
+          load_group_ >= 0 ? s->group_mean_displacement(load_group_).dot(load_direction_) : 0.0;
+      history_ << ',' << load << ',' << u;
+      if (load_group_ >= 0)
+        load_.push_back(load), load_displacement_.push_back(u);
+    }
     cracks_.update(*problem.particle_solver());
     auto& model = const_cast<CoupledProblem&>(problem).model();
     for (const auto& g : model.groups)
@@ -109,6 +125,9 @@ public:
   /// Closes history.csv and writes particles.pvd, bonds.pvd (fem.pvd is the FE side's) and
   /// coupled.pvd: every part at every snapshot time, for ParaView to open as one.
   const std::vector<dem::CrackEvent>& cracks() const { return cracks_.cracks(); }
+  /// Load history of the first prescribed motion (empty without one).
+  const std::vector<double>& loads() const { return load_; }
+  const std::vector<double>& load_displacements() const { return load_displacement_; }
 
   void finish()
   {
@@ -156,6 +175,9 @@ private:
   std::ofstream history_;
   unsigned int cycle_ = 0;
   std::vector<std::pair<double, std::string>> fe_files_;
+  int load_group_ = -1;
+  dem::Vec3 load_direction_ = dem::Vec3::UnitZ();
+  std::vector<double> load_, load_displacement_;
 };
 
 nlohmann::json energies_json(const CoupledProblem::Energies& e)
@@ -337,6 +359,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
                                  {"mode", first.mode == dem::CrackMode::tension ? "tension"
                                                                                 : "shear"}};
     }
+    if (!observer.loads().empty()) // peak_load (N), deflection_at_peak (m)
+      add_peak_load(measured, observer.loads(), observer.load_displacements());
     const auto& de = p.particle_solver()->energy();
     measured["fracture_energy"] = de.fracture;
     groups_text = measured.dump();
