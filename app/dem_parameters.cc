@@ -105,6 +105,10 @@ void declare_dem_parameters(ParameterHandler& prm)
       "Damping ratio xi of the bond dashpots, scaled by coordination (thesis eq. 35-37).");
   prm.declare_entry("particle damping", "0", Double(0, 0.999),
                     "Particle (local) damping gamma in [0, 1) (paper eq. 11-12).");
+  prm.declare_entry("mass damping", "0", Double(0),
+                    "Mass-proportional damping c (1/s): the force -c m v on every particle's "
+                    "translation, as Coupling/mass damping applies in a coupled run (damping "
+                    "ratio c / (2 omega) for a mode of angular frequency omega).");
   prm.leave_subsection();
 
   prm.enter_subsection("Simulation");
@@ -307,6 +311,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
   prm.enter_subsection("Damping");
   c.run.bond_damping_ratio = prm.get_double("bond damping ratio");
   c.run.particle_damping = prm.get_double("particle damping");
+  c.run.mass_damping = prm.get_double("mass damping");
   prm.leave_subsection();
 
   prm.enter_subsection("Simulation");

@@ -3,6 +3,7 @@
 //   dembridge print-parameters
 //   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
 //   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
+//   dembridge compare COUPLED_CASE.prm [--set ...] [--output-dir DIR]   (comparison.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "checkpoint.h"
@@ -19,6 +20,7 @@
 #include "fem/fem_case.h"
 #endif
 #ifdef DEMBRIDGE_HAVE_COUPLING
+#include "compare.h"
 #include "coupled_run.h"
 #endif
 #include <CLI/CLI.hpp>
@@ -204,6 +206,10 @@ int main(int argc, char** argv)
       ->excludes(e_opt);
   dembridge::app::ElasticityOptions elasticity;
   auto* elasticity_cmd = dembridge::app::add_elasticity_command(app, elasticity);
+#ifdef DEMBRIDGE_HAVE_COUPLING
+  dembridge::app::CompareOptions compare;
+  auto* compare_cmd = dembridge::app::add_compare_command(app, compare);
+#endif
   try
   {
     app.parse(argc, argv);
@@ -230,6 +236,10 @@ int main(int argc, char** argv)
       return dembridge::app::verify(verify);
     if (*elasticity_cmd)
       return dembridge::app::run_elasticity(elasticity);
+#ifdef DEMBRIDGE_HAVE_COUPLING
+    if (*compare_cmd)
+      return dembridge::app::run_compare(compare);
+#endif
     return run(case_file, overrides, output_dir, resume_dir);
   }
   catch (const std::exception& e)

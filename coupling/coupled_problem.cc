@@ -113,6 +113,9 @@ void CoupledProblem::setup()
   if (dem_case_.run.particle_damping != 0)
     throw std::runtime_error("Damping/particle damping: not available in a coupled run (its "
                              "force law cannot be tied; use Coupling/mass damping)");
+  if (dem_case_.run.mass_damping != 0)
+    throw std::runtime_error("Damping/mass damping: in a coupled run give it as Coupling/mass "
+                             "damping (it damps both sides alike)");
   if (dem_case_.run.static_solver)
     throw std::runtime_error("Simulation/solver: a coupled run is explicit");
 

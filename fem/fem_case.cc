@@ -272,7 +272,11 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
 nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path& output_dir,
                         MPI_Comm comm)
 {
-  const Parameters p = parse_parameters(prm);
+  return run_case(parse_parameters(prm), output_dir, comm);
+}
+
+nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm)
+{
   nlohmann::json summary;
   if (p.problem == ProblemKind::static_elasticity)
     summary = run_static(p, output_dir, comm);

@@ -4,6 +4,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include "parameters.h"
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -20,4 +22,6 @@ void declare_parameters(dealii::ParameterHandler& prm);
 /// message naming the parameter ("Section/Key") or file on bad input.
 nlohmann::json run_case(const dealii::ParameterHandler& prm,
                         const std::filesystem::path& output_dir, MPI_Comm comm);
+/// The same for parameters built in code (coupling/full_models.h).
+nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm);
 } // namespace dembridge::fem

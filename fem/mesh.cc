@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -98,6 +99,94 @@ void check_refined_mesh_fits(const Parameters& p, double coarse_cells)
   throw std::runtime_error(text.str());
 }
 
+constexpr dealii::types::boundary_id removed_boundary_id = 6;
+
+bool has_remove_box(const Parameters& p)
+{
+  for (unsigned int d = 0; d < 3; ++d)
+    if (!(p.remove_upper[d] > p.remove_lower[d]))
+      return false;
+  return true;
+}
+
+/// Step sizes along axis d: cell faces on the box ends and on every plane of the remove box and
+/// the patches inside it; each interval divided evenly into cells of about the subdivisions'
+/// size (at least one).
+std::vector<double> fitted_steps(const Parameters& p, unsigned int d)
+{
+  const double lo = p.box_lower[d], hi = p.box_upper[d];
+  const double h = (hi - lo) / std::max(1u, p.subdivisions[d]);
+  const double tolerance = 1e-9 * (hi - lo);
+  std::vector<double> planes{lo, hi};
+  auto add = [&](double x)
+  {
+    if (x > lo + tolerance && x < hi - tolerance)
+      planes.push_back(x);
+  };
+  if (has_remove_box(p))
+    add(p.remove_lower[d]), add(p.remove_upper[d]);
+  if (p.fit_planes)
+    for (const auto& patch : p.patches)
+      add(patch.lower[d]), add(patch.upper[d]);
+  std::sort(planes.begin(), planes.end());
+  std::vector<double> steps;
+  for (std::size_t k = 0; k + 1 < planes.size(); ++k)
+  {
+    const double length = planes[k + 1] - planes[k];
+    if (length <= tolerance)
+      continue;
+    const long n = std::max(1L, std::lround(length / h));
+    steps.insert(steps.end(), std::size_t(n), length / double(n));
+  }
+  return steps;
+}
+
+/// The box mesh on fitted planes (fitted_steps), without the cells of the remove box; every
+/// boundary face is named by where it lies: on a box face (x-min = 0 ... z-max = 5, as
+/// GridGenerator's colorize numbers them) or, inside the box, on the removed cells' surface.
+void make_fitted_box(const Parameters& p, dealii::parallel::distributed::Triangulation<3>& tria)
+{
+  std::vector<std::vector<double>> steps(3);
+  for (unsigned int d = 0; d < 3; ++d)
+    steps[d] = fitted_steps(p, d);
+  dealii::Triangulation<3> full;
+  dealii::GridGenerator::subdivided_hyper_rectangle(full, steps, p.box_lower, p.box_upper);
+  if (has_remove_box(p))
+  {
+    std::set<dealii::Triangulation<3>::active_cell_iterator> removed;
+    for (const auto& cell : full.active_cell_iterators())
+    {
+      const auto c = cell->center();
+      bool inside = true;
+      for (unsigned int d = 0; d < 3; ++d)
+        inside = inside && c[d] > p.remove_lower[d] && c[d] < p.remove_upper[d];
+      if (inside)
+        removed.insert(cell);
+    }
+    if (removed.empty())
+      throw std::runtime_error("FEM/Mesh/remove box: no cell centre lies inside it");
+    if (removed.size() == full.n_active_cells())
+      throw std::runtime_error("FEM/Mesh/remove box: it removes every cell");
+    dealii::GridGenerator::create_triangulation_with_removed_cells(full, removed, tria);
+  }
+  else
+    tria.copy_triangulation(full);
+  const double tolerance = 1e-9 * (p.box_upper - p.box_lower).norm();
+  for (const auto& cell : tria.cell_iterators())
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary())
+      {
+        const auto c = cell->face(f)->center();
+        dealii::types::boundary_id id = removed_boundary_id;
+        for (unsigned int d = 0; d < 3; ++d)
+          if (std::abs(c[d] - p.box_lower[d]) < tolerance)
+            id = 2 * d;
+          else if (std::abs(c[d] - p.box_upper[d]) < tolerance)
+            id = 2 * d + 1;
+        cell->face(f)->set_boundary_id(id);
+      }
+}
+
 /// Boundary faces whose centres lie in a patch box get the patch's new boundary id. Done after
 /// the global refinement (the mesh is not refined again), on every cell a rank sees, so that
 /// ghost faces carry the same ids as their owners'.
@@ -154,12 +243,21 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
   BoundaryNames names;
   if (p.mesh_source == MeshSource::box)
   {
-    const std::vector<unsigned int> repetitions(p.subdivisions.begin(), p.subdivisions.end());
-    dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, p.box_lower, p.box_upper,
-                                                      /*colorize=*/true);
     const char* faces[6] = {"x-min", "x-max", "y-min", "y-max", "z-min", "z-max"};
     for (unsigned int f = 0; f < 6; ++f)
       names[faces[f]] = {static_cast<dealii::types::boundary_id>(f), 2};
+    if (has_remove_box(p) || p.fit_planes)
+    {
+      make_fitted_box(p, tria);
+      if (has_remove_box(p))
+        names["removed"] = {removed_boundary_id, 2};
+    }
+    else
+    {
+      const std::vector<unsigned int> repetitions(p.subdivisions.begin(), p.subdivisions.end());
+      dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, p.box_lower,
+                                                        p.box_upper, /*colorize=*/true);
+    }
   }
   else
   {

@@ -150,6 +150,14 @@ void declare_fem_parameters(ParameterHandler& prm)
                       "Number of cells of the coarse box along x, y, z.");
     prm.declare_entry("refinements", "0", Patterns::Integer(0, 10),
                       "Number of global refinements of the coarse mesh (each halves h).");
+    prm.declare_entry("remove box", "", Patterns::Anything(),
+                      "'X,Y,Z to X,Y,Z' (box meshes): the cells inside are left out, e.g. a "
+                      "notch; its faces form the boundary 'removed'. The box's planes are mesh "
+                      "planes (fit planes is implied).");
+    prm.declare_entry("fit planes", "false", Patterns::Bool(),
+                      "Box meshes: put cell faces on the planes of every patch (and of the "
+                      "remove box), dividing the intervals between them evenly to about the "
+                      "size the subdivisions give, so that a patch is resolved exactly.");
     prm.declare_entry("patches", "", Patterns::Anything(),
                       "'NAME: X,Y,Z to X,Y,Z; ...': the boundary faces (after refinement) whose "
                       "centres lie in the box become the boundary NAME, e.g. a support strip "
@@ -293,6 +301,23 @@ Parameters parse_parameters(const ParameterHandler& prm)
         fail(where, "patch '" + patch.name + "': upper corner below lower corner");
     p.patches.push_back(patch);
   }
+
+  if (const std::string remove = trim(prm.get(mesh, "remove box")); !remove.empty())
+  {
+    const std::string where = "FEM/Mesh/remove box";
+    if (p.mesh_source != MeshSource::box)
+      fail(where, "only a box mesh (FEM/Mesh/source = box) can have cells removed");
+    std::tie(p.remove_lower, p.remove_upper) = parse_segment(remove, where);
+    for (unsigned int d = 0; d < 3; ++d)
+      if (!(p.remove_upper[d] > p.remove_lower[d]))
+        fail(where, "the upper corner must exceed the lower one in every coordinate");
+    bool inside = true;
+    for (unsigned int d = 0; d < 3; ++d)
+      inside = inside && p.remove_upper[d] > p.box_lower[d] && p.remove_lower[d] < p.box_upper[d];
+    if (!inside)
+      fail(where, "the box does not overlap the mesh box");
+  }
+  p.fit_planes = prm.get_bool(mesh, "fit planes");
 
   const Path material{"FEM", "Material"};
   p.material = prm.get(material, "model") == "isotropic" ? MaterialModel::isotropic

@@ -112,6 +112,12 @@ struct Parameters
   std::array<unsigned int, 3> subdivisions{{1, 1, 1}};
   unsigned int refinements = 0;
   std::vector<BoundaryPatch> patches;
+  /// Box meshes: cells inside [remove_lower, remove_upper] are left out (a notch); its new
+  /// faces form the boundary "removed". No removal while the box has no volume.
+  Point<3> remove_lower, remove_upper;
+  /// Box meshes: cell faces are placed on the planes of the remove box and of every patch that
+  /// cut the box, the intervals between them divided evenly to about the subdivisions' size.
+  bool fit_planes = false;
   // FEM/Material
   MaterialModel material = MaterialModel::isotropic;
   double youngs_modulus = 1.0;

@@ -78,6 +78,7 @@ struct RunConfig
   int threads = 1;
   double bond_damping_ratio = 0; ///< xi (thesis eq. 37)
   double particle_damping = 0;   ///< gamma (paper eq. 11-12)
+  double mass_damping = 0;       ///< c (1/s): -c m v on the particles (explicit_solver.h)
   bool static_solver = false;    ///< true: linear static solve (static_solver.h) instead
 };
 

@@ -22,6 +22,9 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     throw InputError("Simulation/time step: must be positive");
   if (settings_.particle_damping < 0 || settings_.particle_damping >= 1)
     throw InputError("Damping/particle damping: must lie in [0, 1)");
+  if (settings_.mass_damping < 0 || settings_.mass_damping * settings_.time_step >= 1)
+    throw InputError("Damping/mass damping: must be >= 0 and below 1 / time step (" +
+                     std::to_string(1 / settings_.time_step) + " 1/s)");
   settings_.threads = std::max(1, settings_.threads);
   std::vector<char> touched(p_.size(), 0);
   for (const auto& c : constraints_)
@@ -390,6 +393,7 @@ void ExplicitSolver::apply_loads()
 template <bool record> void ExplicitSolver::integrate()
 {
   const double dt = settings_.time_step, gamma = settings_.particle_damping;
+  const double mass_damping = settings_.mass_damping;
   const std::size_t n = p_.size();
   double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0, unbalanced = 0;
   long n_free = 0;
@@ -415,6 +419,12 @@ template <bool record> void ExplicitSolver::integrate()
         unbalanced += free.norm();
         ++n_free;
       }
+    Vec3 mass_damping_force = Vec3::Zero();
+    if (mass_damping > 0) // -c m v^{n-1/2}; on a constrained DOF it enters the reaction
+    {
+      mass_damping_force = -mass_damping * m * v0;
+      F[i] += mass_damping_force;
+    }
     Vec3 v1, w1;
     if (mask == 0 && gamma == 0)
     {
@@ -448,6 +458,12 @@ template <bool record> void ExplicitSolver::integrate()
         w1[k] =
             update(mask & (1u << (k + 3)), p_.prescribed_angular_velocity[i][k], w0[k], M[i][k], I);
       }
+    }
+    if (mass_damping > 0)
+    {
+      dissipation -= 0.5 * dt * mass_damping_force.dot(v0 + v1);
+      if constexpr (record)
+        lead -= 0.5 * dt * mass_damping_force.dot(v1);
     }
     if (dashpots_)
     {

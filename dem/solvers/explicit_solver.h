@@ -6,7 +6,8 @@
 // One step at time t_n (positions x^n, velocities v^{n-1/2}):
 //   1. bond forces from x^n, q^n (unified law, bond_kernel.h), dashpots from v^{n-1/2};
 //   2. external forces and moments of the loads at t_n;
-//   3. particle damping F''_i = -gamma |F_i| sign(v_i) per component (paper eq. 11-12);
+//   3. particle damping F''_i = -gamma |F_i| sign(v_i) per component (paper eq. 11-12), and
+//      mass damping -c m v^{n-1/2} (lagged: explicit, stable for c dt < 2);
 //   4. v^{n+1/2} = v^{n-1/2} + dt F/m (eq. 40), w likewise with I (eq. 44); constrained DOFs
 //      take their prescribed value and the force needed for that is their reaction;
 //   5. x^{n+1} = x^n + dt v^{n+1/2} (eq. 41); q^{n+1} = exp(dt w^{n+1/2} / 2) q^n (the
@@ -36,6 +37,9 @@ struct SolverSettings
   double time_step = 0;        ///< s
   double particle_damping = 0; ///< gamma (paper eq. 11-12), dimensionless, in [0, 1)
   int threads = 1;
+  /// c (1/s): mass-proportional damping -c m v^{n-1/2} on every particle's translation (what
+  /// Coupling/mass damping applies in a coupled run, so that a full-DEM run can match it)
+  double mass_damping = 0;
 };
 
 class ExplicitSolver

@@ -43,7 +43,7 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   ExplicitSolver solver(model.particles, model.bonds, model.groups, model.constraints, model.loads,
-                        {model.time_step, c.run.particle_damping, c.run.threads});
+                        {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping});
   for (const auto& contribution : model.contributions)
     solver.add_contribution(contribution.get());
   RunResult res;

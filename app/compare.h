@@ -1,0 +1,35 @@
+#pragma once
+// dembridge compare COUPLED_CASE.prm (issue 10): the coupled run against full DEM and a full
+// (elastic) FE model of the same geometry, supports, load and packing
+// (coupling/full_models.h derives the two). The runs go into the output folder D:
+//   D/coupled/    the coupled run of the case (`dembridge run`, its own process)
+//   D/full_dem/   full_dem.prm (the derived DEM case, runnable) and its run (own process; the
+//                 coupled run's time step, so that both march alike)
+//   D/full_fem/   the static FE run (in this process)
+//   D/comparison.json   per model: wall time, peak memory, peak load, deflection at peak,
+//                       initial stiffness, broken bonds, fracture energy, first crack, energy
+//                       balance; coupled against full DEM: ratios, the first cracks' distance
+//                       from each other and from the notch, the speed-up
+//   D/comparison.csv    the load-deflection curves of the three (model, deflection, load)
+//   D/comparison.png    the curves and the crack paths side by side (broken-bond midpoints
+//                       projected on the beam's side), matplotlib via /usr/bin/python3
+// Every input is checked (both derived models built on paper) before anything runs;
+// comparison.json is written last, so a failed comparison leaves none.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace dembridge::app
+{
+struct CompareOptions
+{
+  std::string case_file, output_dir;
+  std::vector<std::string> overrides;
+  double fe_cell_size = 0;    ///< m; 0: two particle diameters
+  unsigned int fe_degree = 2; ///< FE_Q degree of the elastic reference
+  bool plot = true;
+};
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& o);
+int run_compare(const CompareOptions& o);
+} // namespace dembridge::app
