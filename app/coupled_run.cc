@@ -33,14 +33,28 @@ public:
       : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir),
         cracks_(dir, out.write_vtu)
   {
-    if (!root_)
-      return;
     // the load a testing machine would read: the first prescribed motion's group, the force
     // the prescription exerts on it (its reaction, ExplicitSolver::group_force) along the
     // motion, and its displacement along it
     for (const auto& l : problem.model().loads)
       if (l.prescribes_motion() && l.value.norm() > 0 && load_group_ < 0)
         load_group_ = l.group, load_direction_ = l.value.normalized();
+    // without one, the continuum's reaction (FEM/Measurements/reaction boundary, along the
+    // reaction direction) against the loaded boundary's approach (e.g. a specimen compressed
+    // through its FE ends: both positive in compression); every rank (collective)
+    const auto& fp = problem.fe_parameters();
+    if (load_group_ < 0 && !fp.reaction_boundary.empty() && !fp.loaded_boundary.empty())
+    {
+      auto& cont = problem.continuum();
+      fe_reaction_id_ = fem::find_boundary(cont.boundary_names(), fp.reaction_boundary,
+                                           "FEM/Measurements/reaction boundary");
+      fe_loaded_id_ = fem::find_boundary(cont.boundary_names(), fp.loaded_boundary,
+                                         "FEM/Measurements/loaded boundary");
+      fe_direction_ = fp.reaction_direction;
+      fe_load_ = true;
+    }
+    if (!root_)
+      return;
     history_.open(dir / "history.csv.part");
     if (!history_)
       throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
@@ -63,6 +77,15 @@ public:
     std::vector<dealii::Tensor<1, 3>> u;
     for (const auto& p : probes_) // collective
       u.push_back(const_cast<CoupledProblem&>(problem).continuum().probe_vector(p));
+    double fe_load = 0, fe_approach = 0;
+    if (fe_load_) // collective
+    {
+      const auto& cont = const_cast<CoupledProblem&>(problem).continuum();
+      fe_load = cont.reaction(fe_reaction_id_) * fe_direction_;
+      fe_approach = -(cont.boundary_means(fe_loaded_id_).mean_displacement -
+                      cont.boundary_means(fe_reaction_id_).mean_displacement) *
+                    fe_direction_;
+    }
     if (!root_)
       return;
     const auto& e = problem.energies();
@@ -79,9 +102,14 @@ public:
           load_group_ >= 0 ? s->group_force(load_group_).dot(load_direction_) : 0.0;
       const double u =
           load_group_ >= 0 ? s->group_mean_displacement(load_group_).dot(load_direction_) : 0.0;
-      history_ << ',' << load << ',' << u;
+      if (fe_load_)
+        history_ << ',' << fe_load << ',' << fe_approach;
+      else
+        history_ << ',' << load << ',' << u;
       if (load_group_ >= 0)
         load_.push_back(load), load_displacement_.push_back(u);
+      else if (fe_load_)
+        load_.push_back(fe_load), load_displacement_.push_back(fe_approach);
     }
     cracks_.update(*problem.particle_solver());
     auto& model = const_cast<CoupledProblem&>(problem).model();
@@ -125,7 +153,8 @@ public:
   /// Closes history.csv and writes particles.pvd, bonds.pvd (fem.pvd is the FE side's) and
   /// coupled.pvd: every part at every snapshot time, for ParaView to open as one.
   const std::vector<dem::CrackEvent>& cracks() const { return cracks_.cracks(); }
-  /// Load history of the first prescribed motion (empty without one).
+  /// Load history of the first prescribed motion, else of the continuum's reaction boundary
+  /// (empty without either).
   const std::vector<double>& loads() const { return load_; }
   const std::vector<double>& load_displacements() const { return load_displacement_; }
 
@@ -177,6 +206,9 @@ private:
   std::vector<std::pair<double, std::string>> fe_files_;
   int load_group_ = -1;
   dem::Vec3 load_direction_ = dem::Vec3::UnitZ();
+  bool fe_load_ = false; ///< the load is the continuum's reaction (no particle load)
+  dealii::types::boundary_id fe_reaction_id_ = 0, fe_loaded_id_ = 0;
+  dealii::Tensor<1, 3> fe_direction_;
   std::vector<double> load_, load_displacement_;
 };
 
@@ -223,6 +255,14 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   for (const auto& x : c.continuum.deflection_points)
     probes.push_back(p.continuum().make_probe(x, "FEM/Measurements/deflection points"));
 
+  std::vector<std::string> warnings;
+  if (root)
+    for (const auto& w : coupling::damage_setup_warnings(c, p))
+    {
+      std::fprintf(stderr, "dembridge: warning: %s\n", w.c_str());
+      warnings.push_back(w);
+    }
+
   CoupledObserver observer(dir, out, p, probes, root);
   const coupling::CoupledRunResult r = coupling::run_coupled(p, run, observer);
   observer.finish();
@@ -257,6 +297,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     if (bd.reached)
       j["damage_reached_band_time"] = bd.first_time;
   }
+  j["warnings"] = warnings; // rank 0's (the particle model's)
   j["band_width"] = c.settings.geometry.band_width;
   j["weight_floor"] = c.settings.geometry.weight_floor;
   {

@@ -37,6 +37,11 @@ void declare_damage_parameters(ParameterHandler& prm)
                     "Relative standard deviation of a normal strength scatter.");
   prm.declare_entry("weibull modulus", "0", Double(), "Weibull modulus m of the strengths.");
   prm.declare_entry("seed", "1", Integer(0), "Seed of the strength scatter.");
+  prm.declare_entry("scatter key", "bond order", Selection("bond order|position"),
+                    "bond order: one stream drawn in the order the bonds are formed; position: "
+                    "each bond's own stream, seeded by its reference midpoint, so that the same "
+                    "bond gets the same strengths in a renumbered or larger specimen (a coupled "
+                    "run's particle region and its full DEM, dembridge compare).");
   prm.declare_entry("fracture energy mode I", "0", Double(),
                     "Softening: energy dissipated per bond area when tension governs (J/m^2); "
                     "at least sigma_t^2 A / (2 k_n) (no snap-back).");
@@ -68,6 +73,7 @@ dem::DamageConfig parse_damage_parameters(ParameterHandler& prm)
               : scatter == "normal" ? dem::StrengthScatter::normal
                                     : dem::StrengthScatter::weibull;
   d.scatter_deviation = prm.get_double("scatter");
+  d.scatter_by_position = prm.get("scatter key") == "position";
   d.weibull_modulus = prm.get_double("weibull modulus");
   d.seed = static_cast<unsigned long>(prm.get_integer("seed"));
   prm.leave_subsection();

@@ -89,6 +89,11 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
   fs::current_path(case_dir);
   try
   {
+    // a continuum has no bonds: strengths there would be silently unused
+    if (mode == "fem" && prm->get({"Damage"}, "failure") != "none")
+      throw std::runtime_error("Damage/failure: a continuum run (Mode = fem) has no bonds to "
+                               "break; damage needs particles (Mode = dem, or coupled with the "
+                               "damage zone in its particle region)");
     // before building anything: refuse a case the machine's memory cannot hold
     memory_estimate = dembridge::app::check_memory(*prm);
     if (mode == "dem")

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 namespace dembridge::coupling
@@ -200,5 +201,53 @@ std::unique_ptr<CoupledProblem> make_coupled_problem(CoupledCase& c, MPI_Comm co
                                [&](const Vec3& X) { return pulse_velocity(pulse, X, dt); });
   }
   return problem;
+}
+} // namespace dembridge::coupling
+
+namespace dembridge::coupling
+{
+std::vector<std::string> damage_setup_warnings(const CoupledCase& c, CoupledProblem& p)
+{
+  using dem::Vec3;
+  std::vector<std::string> lines;
+  if (c.particles.damage.law.mode == dem::FailureMode::none)
+    return lines;
+  auto text = [](const Vec3& v)
+  {
+    std::ostringstream s;
+    s << v.x() << ", " << v.y() << ", " << v.z();
+    return s.str();
+  };
+  const auto& g = p.handshake().geometry();
+  const auto& src = c.particles.particles;
+  if ((src.remove_box_max - src.remove_box_min).minCoeff() > 0)
+  {
+    // the part of the notch box inside the FE domain must lie in the particle box
+    const Vec3 lo = src.remove_box_min.cwiseMax(g.domain_lo);
+    const Vec3 hi = src.remove_box_max.cwiseMin(g.domain_hi);
+    const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
+    if ((hi - lo).minCoeff() > 0 &&
+        ((lo - g.particle_lo).minCoeff() < -tol || (g.particle_hi - hi).minCoeff() < -tol))
+      lines.push_back("Particles/remove box: the notch (" + text(lo) + " to " + text(hi) +
+                      ") reaches outside the particle region (" + text(g.particle_lo) + " to " +
+                      text(g.particle_hi) + "); the continuum there is not notched and cannot "
+                      "crack");
+  }
+  const auto& model = p.model();
+  const auto& h = p.handshake();
+  for (const auto& load : model.loads)
+  {
+    const auto& group = model.groups[load.group];
+    std::size_t outside = 0;
+    for (int i : group.members)
+      outside += !h.in_particle_only(model.particles.reference_position[i]);
+    if (outside > 0)
+      lines.push_back("Load " + load.name + ": " + std::to_string(outside) + " of the " +
+                      std::to_string(group.members.size()) + " particles of group '" +
+                      group.name + "' lie in the handshake band, whose bonds are held elastic "
+                      "and blended with the continuum; load the particle-only region (at least "
+                      "a band width inside the particle box) where damage is to start");
+  }
+  return lines;
 }
 } // namespace dembridge::coupling

@@ -76,3 +76,13 @@ int pulse_side(const CoupledCase& c);
 /// The end of the last load ramp (DEM loads and driven boundaries), s.
 double last_ramp_end(const CoupledCase& c);
 } // namespace dembridge::coupling
+
+namespace dembridge::coupling
+{
+/// What a damage run (Damage/failure set) asks but its set-up cannot show, one line each naming
+/// the key: a notch (Particles/remove box) reaching outside the particle region, where the
+/// continuum is not notched; a loaded group with particles outside the particle-only zone (in
+/// the band its bonds are held elastic and blended, beyond it there are none). Empty for runs
+/// without damage. Rank 0 (the particle model's).
+std::vector<std::string> damage_setup_warnings(const CoupledCase& c, CoupledProblem& p);
+} // namespace dembridge::coupling

@@ -119,6 +119,8 @@ public:
   dem::Model& model() { return model_; }
   const ParticleBlending& blending() const { return blending_; }
   fem::ExplicitDynamics& continuum() { return *fe_; }
+  /// The continuum's parameters as the run uses them (supports, measurements).
+  const fem::Parameters& fe_parameters() const { return fe_prm_; }
   const dem::ExplicitSolver* particle_solver() const { return solver_.get(); }
   const PointTransfer& transfer() const { return transfer_; }
   std::size_t n_particles() const { return n_particles_; }

@@ -26,7 +26,8 @@ void require_positive(double value, const std::string& key, const char* unit)
 class StrengthSampler
 {
 public:
-  explicit StrengthSampler(const DamageConfig& c) : c_(c), rng_(c.seed)
+  explicit StrengthSampler(const DamageConfig& c) : StrengthSampler(c, c.seed) {}
+  StrengthSampler(const DamageConfig& c, std::uint64_t seed) : c_(c), rng_(seed)
   {
     if (c.scatter == StrengthScatter::weibull)
       weibull_scale_ = 1.0 / std::tgamma(1.0 + 1.0 / c.weibull_modulus);
@@ -74,6 +75,23 @@ private:
   double spare_ = 0;
   bool has_spare_ = false;
 };
+/// splitmix64 (Steele et al. 2014): a bijective mix, so nearby grid cells get unrelated seeds.
+std::uint64_t mix(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+/// The seed of a bond at midpoint m: the case's seed and m on a 0.1 um grid.
+std::uint64_t position_seed(std::uint64_t seed, const Vec3& m)
+{
+  std::uint64_t h = mix(seed);
+  for (int d = 0; d < 3; ++d)
+    h = mix(h ^ std::uint64_t(std::llround(m[d] * 1e7)));
+  return h;
+}
 } // namespace
 
 void DamageConfig::validate() const
@@ -111,7 +129,7 @@ void DamageConfig::validate() const
   }
 }
 
-void assign_bond_strengths(BondStore& b, const DamageConfig& c)
+void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vector<Vec3>* positions)
 {
   c.validate();
   const std::size_t n = b.size();
@@ -129,11 +147,26 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c)
   if (!on)
     return;
   const double shear_mean = c.law.shear == ShearCriterion::constant ? c.shear_strength : c.cohesion;
-  StrengthSampler sample(c);
-  for (std::size_t k = 0; k < n; ++k)
+  if (c.scatter_by_position && c.scatter != StrengthScatter::none)
   {
-    b.tensile_strength[k] = sample.draw(c.tensile_strength);
-    b.shear_strength[k] = sample.draw(shear_mean);
+    if (!positions)
+      throw InputError("Damage/scatter key: position needs the particles' positions");
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Vec3 mid = 0.5 * ((*positions)[b.a[k]] + (*positions)[b.b[k]]);
+      StrengthSampler sample(c, position_seed(c.seed, mid));
+      b.tensile_strength[k] = sample.draw(c.tensile_strength);
+      b.shear_strength[k] = sample.draw(shear_mean);
+    }
+  }
+  else
+  {
+    StrengthSampler sample(c);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      b.tensile_strength[k] = sample.draw(c.tensile_strength);
+      b.shear_strength[k] = sample.draw(shear_mean);
+    }
   }
   if (c.law.mode != FailureMode::softening)
     return;

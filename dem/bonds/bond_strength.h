@@ -11,6 +11,12 @@
 //            (Weibull modulus m; the mean is s_mean)
 // The generator is std::mt19937_64 with uniforms built from its raw 53 bits, so the same seed
 // gives bit-identical strengths on every platform.
+// Keyed by position (`scatter key = position`), each bond draws from a generator of its own,
+// seeded by the seed and its reference midpoint on a 0.1 um grid (splitmix64 of the three
+// grid indices): a bond's strengths then depend on where it is, not on the order the bonds were
+// formed in, so a packing renumbered, or the same lattice in a larger specimen (the particle
+// region of a coupled run and its full-DEM counterpart, `dembridge compare`), gives every
+// bond the same strengths.
 // Softening (bond_damage.h eq. 4) needs kappa_u >= 1 for every bond: G_f A is at least the
 // elastic energy at the peak of pure tension, sigma_t^2 A^2 / (2 k_n) (mode I), and of pure shear,
 // tau_c^2 A^2 / (2 k_s) (mode II; Mohr-Coulomb: c, the strength without compression). Setup
@@ -39,6 +45,7 @@ struct DamageConfig
   double scatter_deviation = 0; ///< relative std dev (normal)
   double weibull_modulus = 0;   ///< m (weibull)
   unsigned long seed = 1;
+  bool scatter_by_position = false; ///< key each bond's draws by its reference midpoint
 
   /// Throws InputError naming Damage/key when a value is non-physical (a no-op for mode none).
   void validate() const;
@@ -46,5 +53,7 @@ struct DamageConfig
 
 /// Sets the store's failure law and every bond's strengths (and resets its damage); checks the
 /// softening fracture energies against snap-back. Throws InputError naming Damage/key.
-void assign_bond_strengths(BondStore& bonds, const DamageConfig& config);
+/// @p positions: the particles' reference positions, needed by scatter_by_position.
+void assign_bond_strengths(BondStore& bonds, const DamageConfig& config,
+                           const std::vector<Vec3>* positions = nullptr);
 } // namespace dembridge::dem

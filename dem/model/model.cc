@@ -77,7 +77,7 @@ Model build_model(const CaseConfig& c)
   if (c.damage.law.mode != FailureMode::none && c.run.static_solver)
     throw InputError("Damage/failure: the static solver solves the linear, undamaged bond "
                      "network; bond failure needs Simulation/solver = explicit");
-  assign_bond_strengths(m.bonds, c.damage);
+  assign_bond_strengths(m.bonds, c.damage, &m.particles.reference_position);
 
   if (c.groups.size() > 32)
     throw InputError("Groups/names: at most 32 groups");
