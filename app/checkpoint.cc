@@ -392,7 +392,14 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
   if (!dem && s.resume)
     throw InputError("--resume: only DEM runs (Mode = dem) are checkpointed");
   if (!dem)
+  {
+    // why: a coupled or FE run would ignore the interval and leave no checkpoint to resume
+    for (const char* key : {"checkpoint interval", "checkpoint wall interval"})
+      if (prm.get_double({"Output"}, key) > 0)
+        throw InputError(s.case_name + ": Output/" + key + ": only DEM runs (Mode = dem) are " +
+                         "checkpointed, this is a " + prm.get("Mode") + " run");
     return s;
+  }
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
   if (!s.resume)

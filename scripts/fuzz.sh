@@ -8,6 +8,8 @@
 # corpus of the repository's own inputs (examples, bad-input tests, generated meshes). Prints one
 # line of figures per target; a finding (crash, sanitizer report, uncaught exception, hang over
 # 10 s, memory over 2 GB) leaves its input in build-fuzz/findings/ and makes the script exit 1.
+# FUZZ_SECONDS=S stops a target after S seconds even if RUNS are not done (the line then shows
+# the executions reached); FUZZ_JOBS=N builds with N jobs (default 2).
 # Needs clang and libclang-rt-14-dev (Debian 12: apt-get install clang libclang-rt-14-dev).
 set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -22,7 +24,7 @@ if [ ! -f "$build/build.ninja" ]; then
   CXX=clang++ CC=clang cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DDEMBRIDGE_FUZZ=ON -DDEMBRIDGE_NATIVE=OFF -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null || exit 2
 fi
-nice -n 10 cmake --build "$build" -j 2 --target "${targets[@]}" dembridge_meshes >/dev/null || {
+nice -n 10 cmake --build "$build" -j "${FUZZ_JOBS:-2}" --target "${targets[@]}" dembridge_meshes >/dev/null || {
   echo "fuzz.sh: build failed (rerun: cmake --build $build --target ${targets[*]})" >&2; exit 2; }
 
 # Seeds: the inputs the project itself reads and refuses.
@@ -39,24 +41,26 @@ mkdir -p "$build/findings"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 status=0
-printf "%-18s %10s %8s %10s %8s %s\n" target executions seconds "exec/s" coverage result
+printf "%-18s %10s %8s %10s %8s %8s %s\n" target executions seconds "exec/s" coverage "rss_mb" result
 for t in "${targets[@]}"; do
   log="$build/findings/$t.log"
   max_len=8192
   [ "$t" = fuzz_mesh ] && max_len=65536
   start=$(date +%s)
   nice -n 10 "$build/fuzz/$t" "$build/corpus/$t" -runs="$runs" -max_len=$max_len -timeout=10 \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/findings/$t-" >"$log" 2>&1
+    -rss_limit_mb=2048 -max_total_time="${FUZZ_SECONDS:-0}" -print_final_stats=1 \
+    -artifact_prefix="$build/findings/$t-" >"$log" 2>&1
   code=$?
   seconds=$(( $(date +%s) - start ))
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*')
+  rss=$(grep -o 'stat::peak_rss_mb: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   result="no finding"
   if [ $code -ne 0 ]; then
     result="FINDING (exit $code): $(ls -t "$build"/findings/"$t"-* 2>/dev/null | head -1), log $log"
     status=1
   fi
-  printf "%-18s %10s %8s %10s %8s %s\n" "$t" "${execs:-?}" "$seconds" \
-    "$(( ${execs:-0} / (seconds > 0 ? seconds : 1) ))" "${cov:-?}" "$result"
+  printf "%-18s %10s %8s %10s %8s %8s %s\n" "$t" "${execs:-?}" "$seconds" \
+    "$(( ${execs:-0} / (seconds > 0 ? seconds : 1) ))" "${cov:-?}" "${rss:-?}" "$result"
 done
 exit $status
