@@ -308,8 +308,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-comparison_csv, png, title, coupled_cracks, dem_cracks, axis_h, axis_v = sys.argv[1:8]
+comparison_csv, png, title, coupled_cracks, dem_cracks, axis_h, axis_v, v_lo, v_hi = sys.argv[1:10]
 h, v = int(axis_h), int(axis_v)
+v_lo, v_hi = float(v_lo), float(v_hi)
 curves = {}
 with open(comparison_csv) as f:
     for row in csv.DictReader(f):
@@ -334,14 +335,20 @@ for name, (d, F) in curves.items():
     axes[0].plot(d, F, style.get(name, "-"), label=name.replace("_", " "))
 axes[0].set_xlabel("deflection (mm)"); axes[0].set_ylabel("load (N)")
 axes[0].legend(); axes[0].grid(alpha=0.3)
-for ax, path, name in ((axes[1], coupled_cracks, "coupled"), (axes[2], dem_cracks, "full DEM")):
-    xs, ys, modes = cracks(path)
+sets = [cracks(coupled_cracks), cracks(dem_cracks)]
+every_x = sets[0][0] + sets[1][0]
+for ax, (xs, ys, modes), name in ((axes[1], sets[0], "coupled"), (axes[2], sets[1], "full DEM")):
     for mode, colour in (("tension", "C3"), ("shear", "C2")):
         sel = [k for k, m in enumerate(modes) if m == mode]
         ax.scatter([xs[k] for k in sel], [ys[k] for k in sel], s=6, c=colour, label=mode)
     ax.set_title(f"{name}: {len(xs)} broken bonds")
     ax.set_xlabel("xyz"[h] + " (m)"); ax.set_ylabel("xyz"[v] + " (m)")
-    ax.set_aspect("equal", adjustable="datalim"); ax.grid(alpha=0.3)
+    # the same window in both: the whole depth, the span of every crack point
+    if every_x:
+        pad = 0.5 * (v_hi - v_lo)
+        ax.set_xlim(min(every_x) - pad, max(every_x) + pad)
+    ax.set_ylim(v_lo, v_hi)
+    ax.set_aspect("equal"); ax.grid(alpha=0.3)
     if xs:
         ax.legend(loc="upper right")
 fig.suptitle(title)
@@ -592,7 +599,8 @@ int run_compare(const CompareOptions& o)
         " " + quote(png.string()) + " " + quote(case_name + ": coupled, full DEM, full FE") + " " +
         quote((dir / "coupled" / "cracks.csv").string()) + " " +
         quote((dir / "full_dem" / "cracks.csv").string()) + " " + std::to_string(h) + " " +
-        std::to_string(v) + " > " + quote(log.string()) + " 2>&1";
+        std::to_string(v) + " " + number(layout.origin[v]) + " " +
+        number(layout.origin[v] + layout.box_size[v]) + " > " + quote(log.string()) + " 2>&1";
     const int status = std::system(command.c_str());
     if (status == 0 && fs::exists(png))
     {
