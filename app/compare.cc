@@ -565,9 +565,11 @@ int run_compare(const CompareOptions& o)
       out << "coupled," << cc_curve.deflection[k] << ',' << cc_curve.load[k] << '\n';
     for (std::size_t k = 0; k < dem_curve.load.size(); ++k)
       out << "full_dem," << dem_curve.deflection[k] << ',' << dem_curve.load[k] << '\n';
-    double top = 0;
-    for (double u : cc_curve.deflection)
-      top = std::max(top, u);
+    double top = 0, most = 0; // the elastic line up to a quarter above the largest load
+    for (std::size_t k = 0; k < cc_curve.load.size(); ++k)
+      top = std::max(top, cc_curve.deflection[k]), most = std::max(most, cc_curve.load[k]);
+    if (fe_stiffness > 0 && most > 0)
+      top = std::min(top, 1.25 * most / fe_stiffness);
     out << "full_fem,0,0\nfull_fem," << top << ',' << fe_stiffness * top << '\n';
     out.close();
     if (!out)
