@@ -2,13 +2,13 @@
 #include "compare.h"
 #include "case_file.h"
 #include "coupled_parameters.h"
+#include "coupling/full_models.h"
 #include "dem_parameters.h"
+#include "fem/fem_case.h"
+#include "memory_guard.h"
 #include "provenance.h"
 #include "verify.h"
-#include "memory_guard.h"
 #include "verify_report.h"
-#include "coupling/full_models.h"
-#include "fem/fem_case.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -393,8 +393,7 @@ int run_compare(const CompareOptions& o)
     WorkingDirectory cd(case_dir);
     cc = parse_coupled_case(*prm);
     layout = coupling::full_dem_layout(cc);
-    const double cell =
-        o.fe_cell_size > 0 ? o.fe_cell_size : 4 * cc.particles.particles.radius;
+    const double cell = o.fe_cell_size > 0 ? o.fe_cell_size : 4 * cc.particles.particles.radius;
     fe_model = coupling::full_fe_model(cc, cell, o.fe_degree);
     // the full-DEM case builds (groups select particles, loads fit)
     (void)dem::build_model(coupling::full_dem_case(cc, layout));
@@ -407,9 +406,10 @@ int run_compare(const CompareOptions& o)
     std::cerr << "compare: note: " << n << std::endl;
 
   // ---- 2. The output folder: the comparison's own files go first.
-  const fs::path dir = fs::absolute(
-      o.output_dir.empty() ? fs::path("output") / ("compare_" + fs::path(o.case_file).stem().string())
-                           : fs::path(o.output_dir));
+  const fs::path dir =
+      fs::absolute(o.output_dir.empty()
+                       ? fs::path("output") / ("compare_" + fs::path(o.case_file).stem().string())
+                       : fs::path(o.output_dir));
   fs::create_directories(dir);
   for (const char* f : {"comparison.json", "comparison.csv", "comparison.png", "full_dem.prm"})
     fs::remove(dir / f);

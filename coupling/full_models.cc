@@ -86,23 +86,26 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
     const dem::Model m = dem::build_model(lattice);
     Vec3 first = Vec3::Constant(std::numeric_limits<double>::max()), last = -first;
     for (std::size_t i = 0; i < m.particles.size(); ++i)
-      first = first.cwiseMin(m.particles.position[i]), last = last.cwiseMax(m.particles.position[i]);
+      first = first.cwiseMin(m.particles.position[i]),
+      last = last.cwiseMax(m.particles.position[i]);
     for (int d = 0; d < 3; ++d)
       if (first[d] - lo[d] > 1.5 * r || hi[d] - last[d] > 1.5 * r)
-        layout.notes.push_back(
-            std::string("Particles/origin: the region's lattice (period ") + text(period[d]) +
-            " m along " + "xyz"[d] + ") does not fill the FE box: the full-DEM particle centres "
-            "span " + text(first[d]) + " to " + text(last[d]) + " m, the FE box " + text(lo[d]) +
-            " to " + text(hi[d]) + " m (choose the origin so that whole periods reach the FE "
-            "box's faces)");
+        layout.notes.push_back(std::string("Particles/origin: the region's lattice (period ") +
+                               text(period[d]) + " m along " + "xyz"[d] +
+                               ") does not fill the FE box: the full-DEM particle centres "
+                               "span " +
+                               text(first[d]) + " to " + text(last[d]) + " m, the FE box " +
+                               text(lo[d]) + " to " + text(hi[d]) +
+                               " m (choose the origin so that whole periods reach the FE "
+                               "box's faces)");
   }
   else
   {
     layout.origin = lo;
     layout.box_size = hi - lo;
     layout.notes.push_back("Particles/source: random: the full-DEM specimen is a new random "
-                           "packing of the whole box (seed " + std::to_string(src.seed) +
-                           "), not the coupled region's spheres");
+                           "packing of the whole box (seed " +
+                           std::to_string(src.seed) + "), not the coupled region's spheres");
   }
 
   const double diameter = 2 * r, inset = diameter * (1 - 1e-9);
@@ -280,7 +283,8 @@ FullFeModel full_fe_model(const CoupledCase& c, double cell_size, unsigned int d
       axis = d;
   if (axis < 0)
     throw std::runtime_error("Load " + load->load.name + ": compare needs the loaded group '" +
-                             load->group + "' to touch a face of the FE box along a loaded "
+                             load->group +
+                             "' to touch a face of the FE box along a loaded "
                              "component");
   const bool upper = std::abs(b[axis] - hi[axis]) < 1e-6 * r;
   const double face = upper ? hi[axis] : lo[axis];
@@ -296,7 +300,8 @@ FullFeModel full_fe_model(const CoupledCase& c, double cell_size, unsigned int d
     if (comps & (1u << d))
     {
       if (shared != 0 && value[d] != shared)
-        throw std::runtime_error("Load " + load->load.name + ": the FE reference prescribes one "
+        throw std::runtime_error("Load " + load->load.name +
+                                 ": the FE reference prescribes one "
                                  "value for every loaded component");
       shared = value[d];
     }

@@ -28,21 +28,22 @@ namespace dembridge::coupling
 /// An FE support as a particle group of the full-DEM model.
 struct SupportGroup
 {
-  std::string name;             ///< support_0, support_1, ...
-  std::string source;           ///< the FE entry it maps, for messages and the case file
+  std::string name;              ///< support_0, support_1, ...
+  std::string source;            ///< the FE entry it maps, for messages and the case file
   dem::GroupSelection selection; ///< box, face or nearest
-  std::uint8_t fixed = 0;       ///< held translations (DofBit mask), zero value
-  bool driven = false;          ///< non-zero FE value: a displacement load instead
+  std::uint8_t fixed = 0;        ///< held translations (DofBit mask), zero value
+  bool driven = false;           ///< non-zero FE value: a displacement load instead
   dem::Vec3 displacement = dem::Vec3::Zero(); ///< m, driven supports
   std::uint8_t driven_components = 0;         ///< bits x, y, z
 };
 
 struct FullDemLayout
 {
-  dem::Vec3 origin = dem::Vec3::Zero(), box_size = dem::Vec3::Zero(); ///< Particles/origin, box size
+  dem::Vec3 origin = dem::Vec3::Zero(),
+            box_size = dem::Vec3::Zero(); ///< Particles/origin, box size
   std::vector<SupportGroup> supports;
-  double mass_damping = 0;     ///< 1/s
-  bool same_packing = false;   ///< lattice: the coupled region's particles reproduced exactly
+  double mass_damping = 0;        ///< 1/s
+  bool same_packing = false;      ///< lattice: the coupled region's particles reproduced exactly
   std::vector<std::string> notes; ///< what differs from the coupled run and why (one line each)
 };
 
@@ -57,16 +58,16 @@ dem::CaseConfig full_dem_case(const CoupledCase& c, const FullDemLayout& layout)
 /// displacement on a group) and the FE boundary patch under that group.
 struct FeLoadPatch
 {
-  std::string group;                 ///< DEM group
-  fem::BoundaryPatch patch;          ///< named "load"
+  std::string group;                          ///< DEM group
+  fem::BoundaryPatch patch;                   ///< named "load"
   dem::Vec3 displacement = dem::Vec3::Zero(); ///< m, end value
-  std::uint8_t components = 0;       ///< prescribed components
+  std::uint8_t components = 0;                ///< prescribed components
   dem::Vec3 direction = dem::Vec3::Zero();    ///< unit, along the displacement
 };
 
 struct FullFeModel
 {
-  fem::Parameters parameters;  ///< static elasticity, box mesh with the notch removed
+  fem::Parameters parameters; ///< static elasticity, box mesh with the notch removed
   FeLoadPatch load;
   std::vector<std::string> notes;
 };

@@ -44,8 +44,7 @@ TEST(MassDamping, DampedOscillatorLosesEnergyAtRateC)
   const int steps_per_period = 400;
   const double dt = period / steps_per_period;
   m.particles.velocity[1] = Vec3(1e-3, 0, 0); // axial: only the normal spring works
-  ExplicitSolver solver(m.particles, m.bonds, m.groups, m.constraints, m.loads,
-                        {dt, 0.0, 1, c});
+  ExplicitSolver solver(m.particles, m.bonds, m.groups, m.constraints, m.loads, {dt, 0.0, 1, c});
   solver.step(true);
   const double e0 = solver.energy().initial;
   ASSERT_GT(e0, 0);
