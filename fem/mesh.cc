@@ -50,6 +50,41 @@ BoundaryNames read_physical_names(std::istream& in, const std::string& file)
   return names;
 }
 
+/// Every $Section of a .msh file closed by its $EndSection before the next one opens: deal.II's
+/// reader loops forever on some files that break this (fuzz/findings/).
+void check_msh_sections(const std::string& file)
+{
+  std::ifstream in(file);
+  std::string line, open;
+  long open_line = 0;
+  for (long n = 1; std::getline(in, line); ++n)
+  {
+    if (!line.empty() && line.back() == '\r')
+      line.pop_back();
+    if (line.empty() || line[0] != '$')
+      continue;
+    if (line.rfind("$End", 0) == 0)
+    {
+      if (open.empty() || line != "$End" + open.substr(1))
+        throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) +
+                                 ": '" + line + "' closes no open section" +
+                                 (open.empty() ? "" : " (" + open + " is open)"));
+      open.clear();
+    }
+    else if (!open.empty())
+      throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
+                               std::to_string(open_line) + ") is not closed by $End" +
+                               open.substr(1) + " before " + line + " (line " +
+                               std::to_string(n) + ")");
+    else
+      open = line, open_line = n;
+  }
+  if (!open.empty())
+    throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
+                             std::to_string(open_line) + ") is not closed by $End" +
+                             open.substr(1));
+}
+
 BoundaryNames read_physical_names(const std::string& file)
 {
   std::ifstream in(file);
@@ -262,6 +297,7 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
   else
   {
     const std::string file = resolve_mesh_file(p.mesh_file);
+    check_msh_sections(file);
     names = read_physical_names(file);
     std::ifstream in(file);
     dealii::GridIn<3> grid_in;
