@@ -8,6 +8,7 @@
 #include "memory_guard.h"
 #include "provenance.h"
 #include "verify.h"
+#include "verify_model.h"
 #include "verify_report.h"
 #include <chrono>
 #include <cmath>
@@ -26,29 +27,16 @@ namespace dembridge::app
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using dem::Vec3;
+using verify_detail::num;
+using verify_detail::python;
+using verify_detail::shell_quote;
 using verify_detail::write_json_atomically;
 
 namespace
 {
-std::string number(double v)
-{
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
 std::string vec_text(const Vec3& v)
 {
-  return number(v.x()) + ", " + number(v.y()) + ", " + number(v.z());
-}
-
-std::string quote(const std::string& s)
-{
-  std::string q = "'";
-  for (const char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+  return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z());
 }
 
 std::string dof_text(std::uint8_t mask)
@@ -134,10 +122,10 @@ std::string full_dem_text(const CompareOptions& o, const coupling::FullDemLayout
   prm->set("box size", vec_text(layout.box_size));
   prm->leave_subsection();
   prm->enter_subsection("Damping");
-  prm->set("mass damping", number(layout.mass_damping));
+  prm->set("mass damping", num(layout.mass_damping));
   prm->leave_subsection();
   prm->enter_subsection("Simulation");
-  prm->set("time step", number(time_step));
+  prm->set("time step", num(time_step));
   prm->leave_subsection();
   prm->enter_subsection("Groups");
   prm->set("names", join(prm->get("names"), all_groups));
@@ -191,10 +179,11 @@ std::string full_dem_text(const CompareOptions& o, const coupling::FullDemLayout
 json run_child(const std::string& what, const fs::path& case_file,
                const std::vector<std::string>& overrides, const fs::path& dir)
 {
-  std::string command = quote(fs::read_symlink("/proc/self/exe").string()) + " run " +
-                        quote(case_file.string()) + " --output-dir " + quote(dir.string());
+  std::string command = shell_quote(fs::read_symlink("/proc/self/exe").string()) + " run " +
+                        shell_quote(case_file.string()) + " --output-dir " +
+                        shell_quote(dir.string());
   for (const auto& s : overrides)
-    command += " --set " + quote(s);
+    command += " --set " + shell_quote(s);
   std::cout << "compare: " << what << " (into " << dir.string() << ")" << std::endl;
   const int status = std::system(command.c_str());
   const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -395,8 +384,6 @@ int run_compare(const CompareOptions& o)
     layout = coupling::full_dem_layout(cc);
     const double cell = o.fe_cell_size > 0 ? o.fe_cell_size : 4 * cc.particles.particles.radius;
     fe_model = coupling::full_fe_model(cc, cell, o.fe_degree);
-    // the full-DEM case builds (groups select particles, loads fit)
-    (void)dem::build_model(coupling::full_dem_case(cc, layout));
   }
   catch (const std::exception& e)
   {
@@ -595,14 +582,14 @@ int run_compare(const CompareOptions& o)
       std::ofstream out(script);
       out << "# Written by `dembridge compare`\n" << plot_script;
     }
-    const std::string py = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const std::string command =
-        quote(py) + " " + quote(script.string()) + " " + quote((dir / "comparison.csv").string()) +
-        " " + quote(png.string()) + " " + quote(case_name + ": coupled, full DEM, full FE") + " " +
-        quote((dir / "coupled" / "cracks.csv").string()) + " " +
-        quote((dir / "full_dem" / "cracks.csv").string()) + " " + std::to_string(h) + " " +
-        std::to_string(v) + " " + number(layout.origin[v]) + " " +
-        number(layout.origin[v] + layout.box_size[v]) + " > " + quote(log.string()) + " 2>&1";
+        shell_quote(python()) + " " + shell_quote(script.string()) + " " +
+        shell_quote((dir / "comparison.csv").string()) + " " + shell_quote(png.string()) + " " +
+        shell_quote(case_name + ": coupled, full DEM, full FE") + " " +
+        shell_quote((dir / "coupled" / "cracks.csv").string()) + " " +
+        shell_quote((dir / "full_dem" / "cracks.csv").string()) + " " + std::to_string(h) + " " +
+        std::to_string(v) + " " + num(layout.origin[v]) + " " +
+        num(layout.origin[v] + layout.box_size[v]) + " > " + shell_quote(log.string()) + " 2>&1";
     const int status = std::system(command.c_str());
     if (status == 0 && fs::exists(png))
     {

@@ -76,23 +76,6 @@ std::string num(double v)
   return s.str();
 }
 
-std::string python()
-{
-  if (const char* env = std::getenv("DEMBRIDGE_PYTHON"); env && *env)
-    return env;
-  if (fs::exists("/usr/bin/python3"))
-    return "/usr/bin/python3";
-  return "python3";
-}
-
-std::string quote(const std::string& s)
-{
-  std::string q = "'";
-  for (const char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 std::string last_line(const fs::path& file)
 {
   std::ifstream in(file);
@@ -103,6 +86,23 @@ std::string last_line(const fs::path& file)
   return last;
 }
 } // namespace
+
+std::string python()
+{
+  if (const char* env = std::getenv("DEMBRIDGE_PYTHON"); env && *env)
+    return env;
+  if (fs::exists("/usr/bin/python3"))
+    return "/usr/bin/python3";
+  return "python3";
+}
+
+std::string shell_quote(const std::string& s)
+{
+  std::string q = "'";
+  for (const char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
 
 json row_json(const Row& row)
 {
@@ -173,9 +173,10 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
     out << "# Written by `dembridge verify`; usage: python3 comparison_plot.py CSV PNG TITLE\n"
         << plot_script;
   }
-  const std::string command = quote(python()) + " " + quote(script.string()) + " " +
-                              quote(csv.string()) + " " + quote(png_tmp.string()) + " " +
-                              quote(title) + " > " + quote(log.string()) + " 2>&1";
+  const std::string command = shell_quote(python()) + " " + shell_quote(script.string()) + " " +
+                              shell_quote(csv.string()) + " " + shell_quote(png_tmp.string()) +
+                              " " + shell_quote(title) + " > " + shell_quote(log.string()) +
+                              " 2>&1";
   const int status_code = std::system(command.c_str());
   const int rc = WIFEXITED(status_code) ? WEXITSTATUS(status_code) : status_code;
   if (rc == 0 && fs::is_regular_file(png_tmp))

@@ -37,6 +37,12 @@ nlohmann::json row_json(const Row& row);
 nlohmann::json write_table_and_plot(const Report& report, const std::filesystem::path& dir,
                                     const std::string& title, bool plot);
 
+/// The interpreter for plot scripts: DEMBRIDGE_PYTHON, else /usr/bin/python3 (Debian's, with
+/// matplotlib), else python3 from PATH.
+std::string python();
+/// @p s single-quoted for a POSIX shell.
+std::string shell_quote(const std::string& s);
+
 /// Writes @p j to dir/name through a temporary file and a rename.
 void write_json_atomically(const std::filesystem::path& dir, const std::string& name,
                            const nlohmann::json& j);

@@ -60,6 +60,8 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
     throw std::runtime_error("FEM/Loads: compare maps the FE supports, not FE loads; put the "
                              "load on a particle group (Loads)");
   FullDemLayout layout;
+  const Vec3 period =
+      is_lattice(src.kind) ? dem::lattice_axis_periods(src.kind, src.radius) : Vec3::Zero();
   const Vec3 lo = to_vec(fe.box_lower), hi = to_vec(fe.box_upper);
   const double r = src.radius;
   if (is_lattice(src.kind))
@@ -67,7 +69,6 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
     // Whole lattice periods to either side, so that the region's particles keep their places;
     // as many as keep the particle centres inside the FE box (a centre may lie on its face, as
     // the supports of a beam do).
-    const Vec3 period = dem::lattice_axis_periods(src.kind, r);
     layout.same_packing = true;
     for (int d = 0; d < 3; ++d)
     {
@@ -77,27 +78,6 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
       layout.origin[d] = o - below * P;
       layout.box_size[d] = end + above * P - layout.origin[d];
     }
-    dem::CaseConfig lattice = c.particles;
-    lattice.particles.origin = layout.origin;
-    lattice.particles.box_size = layout.box_size;
-    lattice.groups.clear();
-    lattice.loads.clear();
-    lattice.measure = {};
-    const dem::Model m = dem::build_model(lattice);
-    Vec3 first = Vec3::Constant(std::numeric_limits<double>::max()), last = -first;
-    for (std::size_t i = 0; i < m.particles.size(); ++i)
-      first = first.cwiseMin(m.particles.position[i]),
-      last = last.cwiseMax(m.particles.position[i]);
-    for (int d = 0; d < 3; ++d)
-      if (first[d] - lo[d] > 1.5 * r || hi[d] - last[d] > 1.5 * r)
-        layout.notes.push_back(std::string("Particles/origin: the region's lattice (period ") +
-                               text(period[d]) + " m along " + "xyz"[d] +
-                               ") does not fill the FE box: the full-DEM particle centres "
-                               "span " +
-                               text(first[d]) + " to " + text(last[d]) + " m, the FE box " +
-                               text(lo[d]) + " to " + text(hi[d]) +
-                               " m (choose the origin so that whole periods reach the FE "
-                               "box's faces)");
   }
   else
   {
@@ -162,6 +142,26 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
     throw std::runtime_error("FEM/Boundary conditions: the continuum has no support, so the "
                              "full-DEM model would have none");
   layout.mass_damping = c.settings.mass_damping;
+  // The full-DEM case builds (its supports select particles); a lattice's centres reach the
+  // FE box's faces.
+  const dem::Model m = dem::build_model(full_dem_case(c, layout));
+  if (is_lattice(src.kind))
+  {
+    Vec3 first = Vec3::Constant(std::numeric_limits<double>::max()), last = -first;
+    for (std::size_t i = 0; i < m.particles.size(); ++i)
+      first = first.cwiseMin(m.particles.position[i]),
+      last = last.cwiseMax(m.particles.position[i]);
+    for (int d = 0; d < 3; ++d)
+      if (first[d] - lo[d] > 1.5 * r || hi[d] - last[d] > 1.5 * r)
+        layout.notes.push_back(std::string("Particles/origin: the region's lattice (period ") +
+                               text(period[d]) + " m along " + "xyz"[d] +
+                               ") does not fill the FE box: the full-DEM particle centres "
+                               "span " +
+                               text(first[d]) + " to " + text(last[d]) + " m, the FE box " +
+                               text(lo[d]) + " to " + text(hi[d]) +
+                               " m (choose the origin so that whole periods reach the FE "
+                               "box's faces)");
+  }
   if (c.settings.fine_scale_damping > 0)
     layout.notes.push_back("Coupling/fine scale damping: acts in the band only; the full-DEM "
                            "run has no counterpart");

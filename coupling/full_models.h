@@ -47,7 +47,8 @@ struct FullDemLayout
   std::vector<std::string> notes; ///< what differs from the coupled run and why (one line each)
 };
 
-/// Throws std::runtime_error naming the key when the case cannot be mapped (FE loads, gmsh
+/// Builds the full-DEM case once to check it (its supports must select particles). Throws
+/// std::runtime_error naming the key when the case cannot be mapped (FE loads, gmsh
 /// boundaries, a lattice that cannot reach the FE box).
 FullDemLayout full_dem_layout(const CoupledCase& c);
 
