@@ -48,4 +48,14 @@ BondStiffness BondStore::stiffness(std::size_t k) const
   s.contact_fraction = contact_fraction[k], s.radius = radius[k];
   return s;
 }
+
+std::size_t BondStore::memory_bytes() const
+{
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return bytes(a) + bytes(b) + bytes(rest_length) + bytes(rest_axis) + bytes(kn) + bytes(ks) +
+         bytes(ktor) + bytes(kben) + bytes(contact_fraction) + bytes(radius) +
+         bytes(damping_force) + bytes(damping_moment) + bytes(model) + bytes(state) + bytes(force) +
+         bytes(moment) + bytes(tensile_strength) + bytes(shear_strength) + bytes(damage) +
+         bytes(kappa_max) + bytes(kappa_ultimate) + bytes(dissipated) + bytes(failure_mode);
+}
 } // namespace dembridge::dem

@@ -60,6 +60,8 @@ struct BondStore
   }
   /// Puts the bonds in the order `order` (new k = old order[k]), every per-bond array alike.
   void reorder(const std::vector<std::size_t>& order);
+  /// Bytes the store holds (the capacity of every array).
+  std::size_t memory_bytes() const;
   /// The constants of bond k as formed (inverse of add's BondStiffness argument).
   BondStiffness stiffness(std::size_t k) const;
   void add(std::int32_t ia, std::int32_t ib, double length, const Vec3& axis, BondModel m,

@@ -20,6 +20,7 @@ void ParticleStore::add(const Vec3& x, double r, double rho)
   prescribed_angular_velocity.push_back(Vec3::Zero());
   group_mask.push_back(0);
   coordination.push_back(0);
+  id.push_back(std::int32_t(position.size() - 1));
   set_mass(size() - 1, rho * 4.0 / 3.0 * std::numbers::pi * r * r * r);
 }
 
@@ -27,5 +28,14 @@ void ParticleStore::set_mass(std::size_t i, double m)
 {
   mass[i] = m;
   inertia[i] = 0.4 * m * radius[i] * radius[i]; // thesis eq. 42
+}
+
+std::size_t ParticleStore::memory_bytes() const
+{
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return bytes(position) + bytes(reference_position) + bytes(velocity) + bytes(angular_velocity) +
+         bytes(orientation) + bytes(force) + bytes(torque) + bytes(radius) + bytes(mass) +
+         bytes(inertia) + bytes(dof_mask) + bytes(prescribed_velocity) +
+         bytes(prescribed_angular_velocity) + bytes(group_mask) + bytes(coordination) + bytes(id);
 }
 } // namespace dembridge::dem

@@ -24,6 +24,9 @@ struct ParticleStore
   std::vector<Vec3> prescribed_angular_velocity;
   std::vector<std::uint32_t> group_mask; // bit g set: particle belongs to group g
   std::vector<int> coordination;         // number of intact bonds
+  /// The particle's id as the user numbers it (its index as generated or read): the stores are
+  /// renumbered into spatial order at setup (dem/model/renumbering.h); outputs show this id.
+  std::vector<std::int32_t> id;
 
   std::size_t size() const { return position.size(); }
 
@@ -32,5 +35,8 @@ struct ParticleStore
 
   /// Sets the mass of particle i (kg) and the matching sphere inertia.
   void set_mass(std::size_t i, double m);
+
+  /// Bytes the store holds (the capacity of every array).
+  std::size_t memory_bytes() const;
 };
 } // namespace dembridge::dem

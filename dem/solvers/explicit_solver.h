@@ -13,7 +13,8 @@
 //   5. x^{n+1} = x^n + dt v^{n+1/2} (eq. 41); q^{n+1} = exp(dt w^{n+1/2} / 2) q^n (the
 //      quaternion form of eq. 45, exact for constant w).
 // No allocation and no virtual call happen inside step(). With threads > 1 the bonds are
-// grouped into spatial slabs so that threads never write the same particle (no atomics, the
+// grouped by particle index chunks (bond_partition.h; compact regions when the particles are in
+// spatial order, renumbering.h) so that threads never write the same particle (no atomics, the
 // result does not depend on the thread count beyond round-off order within a particle).
 // Bond failure (bond_damage.h): with a failure law the bond loop is a separate instantiation
 // that evaluates every bond's stresses on its trial forces each step, softens or breaks it (a
@@ -86,6 +87,9 @@ public:
   /// and each contribution's state. Restoring needs a solver built from the same case (bonds in
   /// another order, from another thread count, are matched by their pairs).
   void visit_state(StateArchive& a);
+  /// Bytes the solver holds beside the particle and bond stores (dashpot resultants, supports,
+  /// failure buffers).
+  std::size_t memory_bytes() const;
   /// Whether every contribution can be checkpointed.
   bool checkpointable() const;
 
@@ -128,8 +132,8 @@ private:
   std::vector<Vec3> constrained_w_;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vector6> constrained_reaction_; ///< support reactions of the previous step
-  /// Bond ranges: phase 0 ranges run in parallel (one per slab), then phase 1 (cut bonds
-  /// between slabs s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
+  /// Bond ranges: phase 0 ranges run in parallel (one per chunk), then phase 1 (cut bonds
+  /// between chunks s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> phases_;
   /// One failure buffer per bond range (phase_buffer_[phase] + range), reserved up front.
   std::vector<std::vector<CrackEvent>> crack_buffers_;
