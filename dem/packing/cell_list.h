@@ -1,9 +1,12 @@
 #pragma once
-// Uniform-grid cell list for neighbour search: O(N) pair finding for bond formation and (later)
-// post-failure contact detection. Cells are at least `cell_size` wide; particles are bucketed
-// by centre, so pairs closer than cell_size are found among the 27 neighbouring cells.
+// Uniform-grid cell list for neighbour search: O(N) pair finding for bond formation, the random
+// packing's Verlet lists and contact detection. Cells are at least `cell_size` wide; particles
+// are bucketed by centre, so pairs closer than cell_size are found among the 27 neighbouring
+// cells. The visiting order (cells z-y-x, particles of a cell by index, neighbour cells z-y-x,
+// their particles by index) is part of the contract: bond numbering and the random packing's
+// floating-point sums follow it.
 #include "dem/core/types.h"
-#include <functional>
+#include <array>
 #include <vector>
 
 namespace dembridge::dem
@@ -13,15 +16,70 @@ class CellList
 public:
   CellList(const std::vector<Vec3>& positions, double cell_size);
 
-  /// Calls f(i, j) once for every pair i < j whose centres are closer than cell_size.
-  void for_each_pair(const std::vector<Vec3>& positions,
-                     const std::function<void(int, int)>& f) const;
+  /// Calls f(i, j) once for every pair i < j whose centres are closer than cell_size, in the
+  /// order stated above. `positions` must be the ones the list was built from.
+  template <class F> void for_each_pair(const std::vector<Vec3>& positions, F&& f) const;
+
+  /// The same visit as for_each_pair, one level lower: f(i, centre_i, slots, begin, end) for
+  /// every particle i and every neighbouring cell (slots [begin, end) of particle(), centre();
+  /// their indices ascend), without the distance and index filters. For loops that filter
+  /// without branches.
+  template <class F> void for_each_neighbour_cell(F&& f) const;
+  const int* particle() const { return cell_particles_.data(); } ///< index in slot k
+  const Vec3* centre() const { return sorted_.data(); }          ///< centre in slot k
+  double cell_size() const { return h_; }
 
 private:
   Vec3 origin_;
   double h_;
   std::array<long, 3> n_{};
   std::vector<int> cell_start_, cell_particles_;
+  std::vector<Vec3> sorted_; ///< centres in cell order (cell_particles_), read contiguously
   long cell_index(const Vec3& x) const;
 };
+
+template <class F> void CellList::for_each_neighbour_cell(F&& f) const
+{
+  std::array<long, 27> neighbours;
+  for (long cz = 0; cz < n_[2]; ++cz)
+    for (long cy = 0; cy < n_[1]; ++cy)
+      for (long cx = 0; cx < n_[0]; ++cx)
+      {
+        const long c = (cz * n_[1] + cy) * n_[0] + cx;
+        if (cell_start_[c] == cell_start_[c + 1])
+          continue;
+        int count = 0;
+        for (long dz = -1; dz <= 1; ++dz)
+          for (long dy = -1; dy <= 1; ++dy)
+            for (long dx = -1; dx <= 1; ++dx)
+            {
+              const long nx = cx + dx, ny = cy + dy, nz = cz + dz;
+              if (nx < 0 || ny < 0 || nz < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
+                continue;
+              neighbours[count++] = (nz * n_[1] + ny) * n_[0] + nx;
+            }
+        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+          for (int q = 0; q < count; ++q)
+            f(cell_particles_[k], sorted_[k], cell_start_[neighbours[q]],
+              cell_start_[neighbours[q] + 1]);
+      }
+}
+
+template <class F> void CellList::for_each_pair(const std::vector<Vec3>& x, F&& f) const
+{
+  (void)x; // why: the centres are read from sorted_, the same values in cell order
+  const double h2 = h_ * h_;
+  for_each_neighbour_cell(
+      [&](int i, const Vec3& xi, int begin, int end)
+      {
+        for (int k2 = begin; k2 < end; ++k2)
+        {
+          const int j = cell_particles_[k2];
+          if (j <= i)
+            continue;
+          if ((sorted_[k2] - xi).squaredNorm() < h2)
+            f(i, j);
+        }
+      });
+}
 } // namespace dembridge::dem
