@@ -345,6 +345,17 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
   // Returns false if CG did not converge (max. 2 n iterations).
   auto solve_cg = [&](bool ic)
   {
+    if (!ic && settings.iterative_solver)
+    {
+      const StaticLinearSystem system{
+          A, b, index, scale, p.reference_position, settings.cg_tolerance};
+      StaticLinearSolution s = settings.iterative_solver(system);
+      res.method = s.method;
+      res.iterations = s.iterations;
+      res.setup_seconds = s.setup_seconds;
+      y = std::move(s.y);
+      return s.converged;
+    }
     res.method = ic ? "ConjugateGradient+IncompleteCholesky" : "ConjugateGradient+Jacobi";
     auto run = [&](auto& cg)
     {
@@ -390,7 +401,7 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
   else if (!solve_cg(settings.method == Method::cg_incomplete_cholesky))
   {
     if (settings.method != Method::automatic)
-      throw InputError(rigid_body_message + " (conjugate gradients did not converge in " +
+      throw InputError(rigid_body_message + " (" + res.method + " did not converge in " +
                        std::to_string(res.iterations) + " iterations)");
     solve_direct(); // automatic: the factorisation decides (solution or singular)
   }

@@ -23,12 +23,38 @@
 // deformation (the explicit bond law is co-rotational, bond_kernel.h; the two agree while
 // rotations and strains are small).
 #include "dem/model/model.h"
+#include <Eigen/SparseCore>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 namespace dembridge::dem
 {
+/// The scaled free system A y = b that the static solver hands to a pluggable iterative solver
+/// (StaticSettings::iterative_solver): A = S K_ff S (unit diagonal), b = S (f_f - K_fc g_c),
+/// u_f = S y. Layers above dem/ plug in solvers dem/ cannot depend on (PETSc's GAMG,
+/// fem/bond_network_solver.h); what they need to build a near-null space comes with it.
+struct StaticLinearSystem
+{
+  const Eigen::SparseMatrix<double>& matrix; ///< A, lower triangle, column-major
+  const Eigen::VectorXd& rhs;                ///< b
+  /// 6 per particle (DofBit order): the unknown of DOF 6 i + k, or -1 where it is held
+  const std::vector<int>& free_index;
+  const Eigen::VectorXd& scale;       ///< S: u of unknown r = scale[r] * y[r]
+  const std::vector<Vec3>& positions; ///< reference centres (rigid-body rotations)
+  double tolerance = 1e-10;           ///< stop at |b - A y| <= tolerance |b|
+};
+
+struct StaticLinearSolution
+{
+  Eigen::VectorXd y;
+  bool converged = false;
+  long iterations = 0;
+  double setup_seconds = 0; ///< preconditioner set-up, part of the solve time
+  std::string method;       ///< e.g. "PETSc CG+GAMG"
+};
+
 struct StaticSettings
 {
   enum class Method
@@ -48,6 +74,10 @@ struct StaticSettings
   /// this (chains, beams: banded, O(n) to factor, slow for CG).
   double banded_gap = 4;
   double cg_tolerance = 1e-10; ///< relative residual of the scaled system
+  /// When set, solves the scaled free system in place of Eigen's Jacobi CG (Method::automatic
+  /// above the direct limit, Method::cg_jacobi), to cg_tolerance; if it does not converge,
+  /// automatic falls back to the factorisation as it does for CG.
+  std::function<StaticLinearSolution(const StaticLinearSystem&)> iterative_solver;
   /// Time (s) at which the loads are taken. Infinite (default): the final state, i.e. force and
   /// moment loads at their full value, loads with a finite end_time left out (the explicit run
   /// ends with them removed), and velocity / angular velocity loads read as prescribed
@@ -78,6 +108,7 @@ struct StaticResult
   double residual = 0;      ///< |(K u - f)_free| / |f_f - K_fc g_c|
   std::string method;  ///< "SimplicialLDLT", "ConjugateGradient+Jacobi" or "...+IncompleteCholesky"
   long iterations = 0; ///< CG iterations (0 for the direct solve)
+  double setup_seconds = 0; ///< preconditioner set-up of a plugged-in solver (in solve_seconds)
   long held_unbonded =
       0; ///< supported spheres without any bond, held where their supports put them
 };
