@@ -81,7 +81,7 @@ int main(int argc, char** argv)
   CLI::App app{"dembridge-bench: bond-updates per second of the DEM core and of the plain loop"};
   std::vector<int> thread_counts{1};
   int steps = 100, rounds = 5;
-  double radius = 2.5e-3, damping = 0.05;
+  double radius = 2.5e-3, damping = 0.05, multiplier = 0;
   std::string model_name = "timoshenko", packing = "hcp", json_file, particle_file;
   bool plain = true, renumber = true;
   app.add_option("--threads", thread_counts, "Thread counts (e.g. --threads 1 2)")
@@ -94,6 +94,10 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"hcp", "random"}));
   app.add_option("--particles-file", particle_file,
                  "CSV x,y,z,r: read the particles from it when it exists, else write them there");
+  app.add_option("--multiplier", multiplier,
+                 "Contact radius multiplier of bond formation (default 1 for hcp, 1.04 for "
+                 "random, as examples/compression_random.prm)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--model", model_name, "Bond model")
       ->check(CLI::IsMember({"parallel_bond", "euler_bernoulli", "timoshenko"}));
   app.add_option("--damping", damping, "Bond dashpot damping ratio (0: no dashpots)")
@@ -123,7 +127,9 @@ int main(int argc, char** argv)
   mat.youngs_modulus = 4e9;
   mat.poisson_ratio = 0.3;
   BondStore b;
-  form_bonds(p, b, mat, 1.0);
+  if (!(multiplier > 0))
+    multiplier = packing == "hcp" ? 1.0 : 1.04;
+  form_bonds(p, b, mat, multiplier);
   assign_bond_damping(p, b, damping);
   std::mt19937 rng(12345);
   std::normal_distribution<double> n01(0, 1);
@@ -141,6 +147,7 @@ int main(int argc, char** argv)
   j["radius"] = radius;
   j["renumbered"] = renumber;
   j["bond_model"] = model_name;
+  j["contact_radius_multiplier"] = multiplier;
   j["bond_damping_ratio"] = damping;
   j["n_particles"] = p.size();
   j["n_bonds"] = b.size();

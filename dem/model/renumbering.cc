@@ -1,23 +1,14 @@
 #include "dem/model/renumbering.h"
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace dembridge::dem
 {
 namespace
 {
-/// The 21 low bits of v spread to every third bit (bit i -> bit 3 i).
-std::uint64_t spread_bits(std::uint64_t v)
-{
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
 template <class T> void permute(std::vector<T>& v, const std::vector<std::size_t>& order)
 {
   if (v.empty())
@@ -29,34 +20,39 @@ template <class T> void permute(std::vector<T>& v, const std::vector<std::size_t
 }
 } // namespace
 
-std::vector<std::size_t> morton_order(const std::vector<Vec3>& points)
+std::vector<std::size_t> row_order(const std::vector<Vec3>& points, double spacing)
 {
   const std::size_t n = points.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t(0));
-  if (n < 2)
+  if (n < 2 || !(spacing > 0))
     return order;
   Vec3 lo = points[0], hi = points[0];
   for (const auto& x : points)
     lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-  const double side = (hi - lo).maxCoeff();
-  if (!(side > 0))
-    return order;
-  // a cube, so that the curve's cells are cubes: its first splits cut the longest axis
-  const double scale = double((1u << 21) - 1) / side;
-  std::vector<std::uint64_t> key(n);
+  // axes by extent: the longest is the slowest (layers across it are smallest), the shortest
+  // the fastest (rows along it)
+  std::array<int, 3> axis{0, 1, 2};
+  const Vec3 size = hi - lo;
+  std::stable_sort(axis.begin(), axis.end(), [&](int p, int q) { return size[p] > size[q]; });
+  struct Key
+  {
+    long layer, row;
+    double along;
+  };
+  std::vector<Key> key(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    std::uint64_t code = 0;
-    for (int d = 0; d < 3; ++d)
-    {
-      const double q = std::clamp((points[i][d] - lo[d]) * scale, 0.0, double((1u << 21) - 1));
-      code |= spread_bits(std::uint64_t(q)) << (2 - d); // x the highest bit of each triple
-    }
-    key[i] = code;
+    const Vec3 d = points[i] - lo;
+    key[i] = {long(std::floor(d[axis[0]] / spacing)), long(std::floor(d[axis[1]] / spacing)),
+              d[axis[2]]};
   }
   std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y) { return key[x] < key[y]; });
+                   [&](std::size_t x, std::size_t y)
+                   {
+                     const Key &a = key[x], &b = key[y];
+                     return std::tie(a.layer, a.row, a.along) < std::tie(b.layer, b.row, b.along);
+                   });
   return order;
 }
 
@@ -95,6 +91,12 @@ void renumber_particles(ParticleStore& p, BondStore& b, std::vector<Group>* grou
 
 void renumber_spatially(ParticleStore& p, BondStore& b, std::vector<Group>* groups)
 {
-  renumber_particles(p, b, groups, morton_order(p.reference_position));
+  if (p.size() < 2)
+    return;
+  double mean = 0;
+  for (double r : p.radius)
+    mean += r;
+  mean /= double(p.size());
+  renumber_particles(p, b, groups, row_order(p.reference_position, 2 * mean));
 }
 } // namespace dembridge::dem

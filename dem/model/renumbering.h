@@ -1,13 +1,19 @@
 #pragma once
-// Spatial order of the particles and bonds (issue 12): at setup the particles are renumbered
-// along a space-filling curve (Morton / Z-order of their reference centres on a 2^21 grid over
-// the bounding cube), so that particles near in space are near in memory. Bonds keep their
-// ends (a stays a, b stays b: the same bond, the same constants, strengths and state) with the
-// particle indices mapped, and are sorted by their first particle in the new numbering (then
-// the second), so that consecutive bonds share particles. Then
-//  - the bond loop reuses each particle's cache lines across its bonds;
-//  - contiguous particle index chunks are compact regions, which the thread partition
-//    (dem/solvers/bond_partition.h) hands to one thread each, on random packings as on lattices.
+// Spatial order of the particles and bonds (issue 12). At setup the particles are renumbered by
+// their reference centres into layers across the specimen's longest axis, rows within a layer
+// across the middle axis (layers and rows one mean diameter thick), and along the shortest axis
+// within a row: the order a lattice generator writes, for any packing. Bonds keep their ends
+// (a stays a, b stays b: the same bond, constants, strengths and state) with the particle
+// indices mapped, and are sorted by the lower of their two new indices (then the higher), so
+// that consecutive bonds share a particle. Then
+//  - a bond's other particle lies in the same row, the next row or the next layer: three
+//    streams through memory that the CPU's prefetchers follow, with a working set of two
+//    layers (the smallest cross-section);
+//  - contiguous particle index chunks are slabs across the longest axis, which the thread
+//    partition (dem/solvers/bond_partition.h) hands to one thread each, on random packings as
+//    on lattices.
+// Measured (bench/RESULTS.md): a Morton (Z-order) curve was slower than this order, on the
+// lattice and on random packings, since its jumps defeat the prefetchers.
 // Renumbering permutes already-built stores, so the physics is identical: only the order of
 // floating-point sums changes. The user's numbering travels with the particles
 // (ParticleStore::id) for outputs.
@@ -18,15 +24,16 @@
 
 namespace dembridge::dem
 {
-/// Morton order of the points: order[new] = old (stable: equal keys keep their order).
-std::vector<std::size_t> morton_order(const std::vector<Vec3>& points);
+/// The layer-row order above for points with the given layer and row thickness (m): order[new]
+/// = old, stable.
+std::vector<std::size_t> row_order(const std::vector<Vec3>& points, double spacing);
 
 /// Puts the particles in the order @p order (new i = old order[i]), every per-particle array
 /// alike; maps the bonds' particle indices and the groups' members (sorted) along and sorts the
-/// bonds by (first, second) particle of each bond in the new numbering, stably.
+/// bonds by (lower, higher) new particle index, stably.
 void renumber_particles(ParticleStore& p, BondStore& b, std::vector<Group>* groups,
                         const std::vector<std::size_t>& order);
 
-/// renumber_particles along morton_order of the reference positions.
+/// renumber_particles along row_order of the reference positions, layers one mean diameter thick.
 void renumber_spatially(ParticleStore& p, BondStore& b, std::vector<Group>* groups = nullptr);
 } // namespace dembridge::dem

@@ -1,5 +1,5 @@
 #include "dem/solvers/explicit_solver.h"
-#include "dem/bonds/bond_kernel.h"
+#include "dem/bonds/bond_block.h"
 #include "dem/bonds/bond_stress.h"
 #include "dem/solvers/bond_partition.h"
 #include <algorithm>
@@ -96,126 +96,128 @@ template <bool record, bool dashpots, FailureMode failure>
 void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain,
                                 double& fracture, std::vector<CrackEvent>& events)
 {
-  const Vec3* x = p_.position.data();
-  const Quat* q = p_.orientation.data();
-  const Vec3* v = p_.velocity.data();
-  const Vec3* w = p_.angular_velocity.data();
+  [[maybe_unused]] const Vec3* v = p_.velocity.data();
+  [[maybe_unused]] const Vec3* w = p_.angular_velocity.data();
   Vec3* F = p_.force.data();
   Vec3* M = p_.torque.data();
   Vec3* Fd = dashpot_force_.data();
   Vec3* Md = dashpot_torque_.data();
   [[maybe_unused]] const FailureLaw& law = b_.failure;
   [[maybe_unused]] const double dt = settings_.time_step;
+  const BondLawArrays arrays(p_, b_);
+  BondBlock block;
   BondForces f;
-  for (std::size_t k = begin; k < end; ++k)
+  for (std::size_t k0 = begin; k0 < end; k0 += BondBlock::W)
   {
-    if constexpr (failure == FailureMode::none)
+    const int m = int(std::min<std::size_t>(BondBlock::W, end - k0));
+    bond_law_block<dashpots>(arrays, k0, m, block); // the law in SIMD lanes
+    for (int j = 0; j < m; ++j)                     // scatter, failure, records: bond by bond
     {
-      if (b_.state[k] != BondState::intact)
-        continue;
-    }
-    else if (b_.state[k] == BondState::broken)
-      continue;
-    const int ia = b_.a[k], ib = b_.b[k];
-    bond_law<dashpots>(x[ia].data(), x[ib].data(), q[ia].coeffs().data(), q[ib].coeffs().data(),
-                       v[ia].data(), v[ib].data(), w[ia].data(), w[ib].data(),
-                       {b_.rest_length[k], b_.rest_axis[k], b_.kn[k], b_.ks[k], b_.ktor[k],
-                        b_.kben[k], b_.contact_fraction[k], b_.damping_force[k],
-                        b_.damping_moment[k]},
-                       f);
-    [[maybe_unused]] double carried = 1.0; // 1 - D
-    if constexpr (failure != FailureMode::none)
-    {
-      // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2), its
-      // two ratios compared as sigma A R against sigma_t A R and tau A R against tau_max A R:
-      // no division on the way, the common case of a bond below its strength
-      const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
-      const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
-      const double R = b_.radius[k], area = std::numbers::pi * R * R;
-      const SectionLoads loads = section_loads(Fe, Me, f.e, R, law.moment_factor);
-      const double tension_cap = b_.tensile_strength[k] * area * R;
-      const double shear_cap =
-          shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
-      // kappa_s > kappa_t (rare: read on failure only)
-      auto shear_governs = [&] { return loads.shear * tension_cap > loads.tension * shear_cap; };
-      // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
-      auto elastic_power = [&]
-      {
-        const double cx = f.e[1] * Fe[2] - f.e[2] * Fe[1], cy = f.e[2] * Fe[0] - f.e[0] * Fe[2],
-                     cz = f.e[0] * Fe[1] - f.e[1] * Fe[0];
-        double P = 0;
-        for (int d = 0; d < 3; ++d)
-        {
-          const double c = d == 0 ? cx : d == 1 ? cy : cz;
-          P += Fe[d] * (v[ib][d] - v[ia][d]) - (Me[d] + f.ra * c) * w[ia][d] +
-               (Me[d] + f.rb * c) * w[ib][d];
-        }
-        return P;
-      };
-      auto fail = [&](double energy, CrackMode mode)
-      {
-        b_.state[k] = BondState::broken;
-        b_.damage[k] = 1.0;
-        events.push_back({time_, k, ia, ib, Vec3::Zero(), Vec3::UnitX(), mode, energy});
-      };
-      if constexpr (failure == FailureMode::brittle)
-      {
-        if (loads.tension >= tension_cap || loads.shear >= shear_cap) // kappa >= 1
-        {
-          // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
-          const double released = f.strain_energy + 0.5 * dt * elastic_power();
-          fracture += released;
-          b_.dissipated[k] = released;
-          fail(released, shear_governs() ? CrackMode::shear : CrackMode::tension);
-          continue;
-        }
-      }
-      else if (const double hat = std::max(1.0, b_.kappa_max[k]);
-               loads.tension > hat * tension_cap || loads.shear > hat * shear_cap)
-      {
-        // kappa above 1 and above the largest so far: damage grows
-        const double kappa = std::max(loads.tension / tension_cap, loads.shear / shear_cap);
-        b_.kappa_max[k] = kappa;
-        if (b_.state[k] == BondState::intact)
-        {
-          // softening starts: kappa_u from the energy at the peak (eq. 4)
-          const double peak_energy = f.strain_energy / (kappa * kappa);
-          const bool shear = shear_governs();
-          const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
-          b_.kappa_ultimate[k] = std::max(1.0, gf * area / peak_energy);
-          b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
-          b_.state[k] = BondState::softening;
-        }
-        const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
-        const double released = (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
-        fracture += released;
-        b_.dissipated[k] += released;
-        b_.damage[k] = D;
-        if (D >= 1.0)
-        {
-          fail(b_.dissipated[k], b_.failure_mode[k]);
-          continue;
-        }
-      }
-      carried = 1.0 - b_.damage[k];
-      if (carried < 1.0)
-        for (int d = 0; d < 3; ++d)
-        {
-          f.Fc[d] *= carried, f.Mc[d] *= carried;
-          f.Fd[d] *= carried, f.Md[d] *= carried;
-        }
-    }
-    bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
-    if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
-      bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
-    if constexpr (record)
-    {
+      const std::size_t k = k0 + std::size_t(j);
       if constexpr (failure == FailureMode::none)
-        strain += f.strain_energy;
-      else
-        strain += carried * f.strain_energy; // secant: (1 - D) U_e
-      b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
-      b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+      {
+        if (b_.state[k] != BondState::intact)
+          continue;
+      }
+      else if (b_.state[k] == BondState::broken)
+        continue;
+      const int ia = b_.a[k], ib = b_.b[k];
+      block.lane(j, f);
+      [[maybe_unused]] double carried = 1.0; // 1 - D
+      if constexpr (failure != FailureMode::none)
+      {
+        // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2), its
+        // two ratios compared as sigma A R against sigma_t A R and tau A R against tau_max A R:
+        // no division on the way, the common case of a bond below its strength
+        const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
+        const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
+        const double R = b_.radius[k], area = std::numbers::pi * R * R;
+        const SectionLoads loads = section_loads(Fe, Me, f.e, R, law.moment_factor);
+        const double tension_cap = b_.tensile_strength[k] * area * R;
+        const double shear_cap =
+            shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
+        // kappa_s > kappa_t (rare: read on failure only)
+        auto shear_governs = [&] { return loads.shear * tension_cap > loads.tension * shear_cap; };
+        // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
+        auto elastic_power = [&]
+        {
+          const double cx = f.e[1] * Fe[2] - f.e[2] * Fe[1], cy = f.e[2] * Fe[0] - f.e[0] * Fe[2],
+                       cz = f.e[0] * Fe[1] - f.e[1] * Fe[0];
+          double P = 0;
+          for (int d = 0; d < 3; ++d)
+          {
+            const double c = d == 0 ? cx : d == 1 ? cy : cz;
+            P += Fe[d] * (v[ib][d] - v[ia][d]) - (Me[d] + f.ra * c) * w[ia][d] +
+                 (Me[d] + f.rb * c) * w[ib][d];
+          }
+          return P;
+        };
+        auto fail = [&](double energy, CrackMode mode)
+        {
+          b_.state[k] = BondState::broken;
+          b_.damage[k] = 1.0;
+          events.push_back({time_, k, ia, ib, Vec3::Zero(), Vec3::UnitX(), mode, energy});
+        };
+        if constexpr (failure == FailureMode::brittle)
+        {
+          if (loads.tension >= tension_cap || loads.shear >= shear_cap) // kappa >= 1
+          {
+            // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
+            const double released = f.strain_energy + 0.5 * dt * elastic_power();
+            fracture += released;
+            b_.dissipated[k] = released;
+            fail(released, shear_governs() ? CrackMode::shear : CrackMode::tension);
+            continue;
+          }
+        }
+        else if (const double hat = std::max(1.0, b_.kappa_max[k]);
+                 loads.tension > hat * tension_cap || loads.shear > hat * shear_cap)
+        {
+          // kappa above 1 and above the largest so far: damage grows
+          const double kappa = std::max(loads.tension / tension_cap, loads.shear / shear_cap);
+          b_.kappa_max[k] = kappa;
+          if (b_.state[k] == BondState::intact)
+          {
+            // softening starts: kappa_u from the energy at the peak (eq. 4)
+            const double peak_energy = f.strain_energy / (kappa * kappa);
+            const bool shear = shear_governs();
+            const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
+            b_.kappa_ultimate[k] = std::max(1.0, gf * area / peak_energy);
+            b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
+            b_.state[k] = BondState::softening;
+          }
+          const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
+          const double released =
+              (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
+          fracture += released;
+          b_.dissipated[k] += released;
+          b_.damage[k] = D;
+          if (D >= 1.0)
+          {
+            fail(b_.dissipated[k], b_.failure_mode[k]);
+            continue;
+          }
+        }
+        carried = 1.0 - b_.damage[k];
+        if (carried < 1.0)
+          for (int d = 0; d < 3; ++d)
+          {
+            f.Fc[d] *= carried, f.Mc[d] *= carried;
+            f.Fd[d] *= carried, f.Md[d] *= carried;
+          }
+      }
+      bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
+      if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
+        bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
+      if constexpr (record)
+      {
+        if constexpr (failure == FailureMode::none)
+          strain += f.strain_energy;
+        else
+          strain += carried * f.strain_energy; // secant: (1 - D) U_e
+        b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+        b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+      }
     }
   }
 }
