@@ -76,7 +76,7 @@ struct CrackEvent
 {
   double time = 0;              ///< s
   std::size_t bond = 0;         ///< index in the BondStore (solver order)
-  int a = 0, b = 0;             ///< particle ids
+  int a = 0, b = 0;             ///< the particles' user ids (ParticleStore::id)
   Vec3 midpoint = Vec3::Zero(); ///< between the particle centres at failure, m
   Vec3 axis = Vec3::UnitX();    ///< unit, a -> b, at failure
   CrackMode mode = CrackMode::tension;

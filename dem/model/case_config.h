@@ -111,5 +111,8 @@ struct CaseConfig
   ContactConfig contacts;     ///< post-failure contacts (dem/contacts/); model none: off
   std::vector<WallConfig> walls; ///< rigid planes, contact partners of the particles
   DamageConfig damage; ///< bond strengths and failure law (dem/bonds/bond_strength.h)
+  /// Renumber particles and bonds into spatial order once built (dem/model/renumbering.h);
+  /// false keeps the packing's own numbering (the tests compare the two).
+  bool spatial_order = true;
 };
 } // namespace dembridge::dem

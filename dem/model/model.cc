@@ -1,6 +1,7 @@
 #include "dem/model/model.h"
 #include "dem/bonds/bonding.h"
 #include "dem/model/load_checks.h"
+#include "dem/model/renumbering.h"
 #include "dem/contacts/contact_forces.h"
 #include "dem/packing/packings.h"
 #include <numbers>
@@ -117,6 +118,12 @@ Model build_model(const CaseConfig& c)
     m.loads.push_back(l);
   }
   check_loads_act_on_free_dofs(m);
+  // Spatial order (renumbering.h) of the built specimen: strengths, groups and explicit bonds
+  // were resolved in the user's numbering, and move with their particles and bonds; outputs
+  // show ParticleStore::id. Everything after this point (damping, time step, contacts, the
+  // solvers, a coupling's interface particles) sees the new indices.
+  if (c.spatial_order)
+    renumber_spatially(p, m.bonds, &m.groups);
 
   assign_bond_damping(p, m.bonds, c.run.bond_damping_ratio);
   m.critical = estimate_critical_time_step(p, m.bonds, c.run.particle_damping);

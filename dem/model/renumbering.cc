@@ -35,24 +35,18 @@ std::vector<std::size_t> row_order(const std::vector<Vec3>& points, double spaci
   std::array<int, 3> axis{0, 1, 2};
   const Vec3 size = hi - lo;
   std::stable_sort(axis.begin(), axis.end(), [&](int p, int q) { return size[p] > size[q]; });
-  struct Key
-  {
-    long layer, row;
-    double along;
-  };
+  // layer, row, position along the row; then the exact coordinates, so that spheres sharing a
+  // wall (equal along-row coordinates) are ordered by where they are, not by how they came in
+  using Key = std::tuple<long, long, double, double, double>;
   std::vector<Key> key(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     const Vec3 d = points[i] - lo;
     key[i] = {long(std::floor(d[axis[0]] / spacing)), long(std::floor(d[axis[1]] / spacing)),
-              d[axis[2]]};
+              d[axis[2]], d[axis[1]], d[axis[0]]};
   }
   std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y)
-                   {
-                     const Key &a = key[x], &b = key[y];
-                     return std::tie(a.layer, a.row, a.along) < std::tie(b.layer, b.row, b.along);
-                   });
+                   [&](std::size_t x, std::size_t y) { return key[x] < key[y]; });
   return order;
 }
 

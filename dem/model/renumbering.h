@@ -25,7 +25,7 @@
 namespace dembridge::dem
 {
 /// The layer-row order above for points with the given layer and row thickness (m): order[new]
-/// = old, stable.
+/// = old; a function of the positions alone (the input order breaks only exact coincidences).
 std::vector<std::size_t> row_order(const std::vector<Vec3>& points, double spacing);
 
 /// Puts the particles in the order @p order (new i = old order[i]), every per-particle array

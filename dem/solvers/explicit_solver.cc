@@ -269,7 +269,8 @@ template <bool record> void ExplicitSolver::dispatch_bond_forces()
 }
 
 // Serial, after the parallel loop: the failures of this step, with where they happened
-// (positions x^n), in particle-id order so the log does not depend on the thread partition.
+// (positions x^n), in the order of the particles' user ids (ParticleStore::id), so the log
+// depends neither on the thread partition nor on the spatial renumbering.
 void ExplicitSolver::drain_crack_events()
 {
   const std::size_t first = cracks_.size();
@@ -282,6 +283,7 @@ void ExplicitSolver::drain_crack_events()
       c.axis = (xb - xa).normalized();
       --p_.coordination[c.a];
       --p_.coordination[c.b];
+      c.a = p_.id[std::size_t(c.a)], c.b = p_.id[std::size_t(c.b)]; // the log shows user ids
       ++broken_by_mode_[int(c.mode)];
       cracks_.push_back(c);
     }
@@ -493,6 +495,18 @@ template <bool record> void ExplicitSolver::integrate()
       constrained_reaction_[c][k + 3] = Rm;
     }
   }
+}
+
+void ExplicitSolver::evaluate_bond_forces()
+{
+  for (std::size_t i = 0; i < p_.size(); ++i)
+  {
+    p_.force[i].setZero(), p_.torque[i].setZero();
+    if (dashpots_)
+      dashpot_force_[i].setZero(), dashpot_torque_[i].setZero();
+  }
+  dashpots_ ? compute_bond_forces<true, true, FailureMode::none>()
+            : compute_bond_forces<true, false, FailureMode::none>();
 }
 
 void ExplicitSolver::step(bool record)

@@ -54,6 +54,15 @@ public:
   /// and kinetic energies and the maximum speed (kept off the hot path otherwise).
   void step(bool record = false);
 
+  /// The bond forces of the current state, without a step: p.force / p.torque hold the bonds'
+  /// particle resultants (dashpots included), dashpot_forces() / dashpot_torques() their
+  /// dashpot parts, energy().strain the bonds' strain energy and bonds.force / moment each
+  /// bond's contact force and couple. For tests and tools (the optimised loop against
+  /// bond_kernel.h); failure laws are not applied.
+  void evaluate_bond_forces();
+  const std::vector<Vec3>& dashpot_forces() const { return dashpot_force_; }
+  const std::vector<Vec3>& dashpot_torques() const { return dashpot_torque_; }
+
   double time() const { return time_; }
   long steps() const { return steps_; }
   double time_step() const { return settings_.time_step; }
