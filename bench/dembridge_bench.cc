@@ -194,12 +194,15 @@ int main(int argc, char** argv)
     }
     if (threads == thread_counts.front())
     {
+      // the stores as bond formation and renumbering leave them (capacity, not size: growth
+      // slack counts), and the solver's own arrays
       nlohmann::json m;
-      m["particles"] = double(pf.memory_bytes()) / np;
-      m["bonds"] = double(bf.memory_bytes()) / np;
+      m["particles"] = double(p.memory_bytes()) / np;
+      m["bonds"] = double(b.memory_bytes()) / np;
       m["solver"] = double(solver.memory_bytes()) / np;
-      m["total"] = double(pf.memory_bytes() + bf.memory_bytes() + solver.memory_bytes()) / np;
+      m["total"] = double(p.memory_bytes() + b.memory_bytes() + solver.memory_bytes()) / np;
       m["bonds_per_particle"] = nb / np;
+      m["bytes_per_bond"] = double(b.memory_bytes()) / nb;
       j["bytes_per_particle"] = m;
     }
     j["runs"].push_back(run);

@@ -1,4 +1,5 @@
 #include "dem/bonds/bond_store.h"
+#include <type_traits>
 
 namespace dembridge::dem
 {
@@ -29,9 +30,10 @@ void BondStore::reorder(const std::vector<std::size_t>& order)
   {
     if (v.empty()) // failure arrays without a failure law
       return;
-    auto copy = v;
+    std::remove_reference_t<decltype(v)> moved(order.size()); // exact size: no slack kept
     for (std::size_t k = 0; k < order.size(); ++k)
-      v[k] = copy[order[k]];
+      moved[k] = v[order[k]];
+    v.swap(moved);
   };
   permute(a), permute(b), permute(rest_length), permute(rest_axis);
   permute(kn), permute(ks), permute(ktor), permute(kben);
@@ -39,6 +41,18 @@ void BondStore::reorder(const std::vector<std::size_t>& order)
   permute(model), permute(state), permute(force), permute(moment);
   permute(tensile_strength), permute(shear_strength), permute(damage), permute(kappa_max);
   permute(kappa_ultimate), permute(dissipated), permute(failure_mode);
+}
+
+void BondStore::reserve(std::size_t n)
+{
+  for (auto* v : {&a, &b})
+    v->reserve(n);
+  for (auto* v : {&rest_length, &kn, &ks, &ktor, &kben, &contact_fraction, &radius, &damping_force,
+                  &damping_moment})
+    v->reserve(n);
+  for (auto* v : {&rest_axis, &force, &moment})
+    v->reserve(n);
+  model.reserve(n), state.reserve(n);
 }
 
 BondStiffness BondStore::stiffness(std::size_t k) const

@@ -60,6 +60,9 @@ struct BondStore
   }
   /// Puts the bonds in the order `order` (new k = old order[k]), every per-bond array alike.
   void reorder(const std::vector<std::size_t>& order);
+  /// Room for n bonds in every array that add() fills (no growth slack: a million-particle
+  /// specimen holds six million bonds).
+  void reserve(std::size_t n);
   /// Bytes the store holds (the capacity of every array).
   std::size_t memory_bytes() const;
   /// The constants of bond k as formed (inverse of add's BondStiffness argument).

@@ -44,6 +44,7 @@ std::size_t form_bonds(ParticleStore& p, BondStore& bonds, const BondMaterial& m
                           pairs.emplace_back(std::min(i, j), std::max(i, j));
                       });
   std::sort(pairs.begin(), pairs.end()); // deterministic bond order
+  bonds.reserve(bonds.size() + pairs.size());
   for (auto [i, j] : pairs)
     add_bond(p, bonds, mat, i, j);
   mark_reference_configuration(p);

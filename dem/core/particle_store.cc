@@ -16,8 +16,6 @@ void ParticleStore::add(const Vec3& x, double r, double rho)
   mass.push_back(0.0);
   inertia.push_back(0.0);
   dof_mask.push_back(0);
-  prescribed_velocity.push_back(Vec3::Zero());
-  prescribed_angular_velocity.push_back(Vec3::Zero());
   group_mask.push_back(0);
   coordination.push_back(0);
   id.push_back(std::int32_t(position.size() - 1));
@@ -35,7 +33,6 @@ std::size_t ParticleStore::memory_bytes() const
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return bytes(position) + bytes(reference_position) + bytes(velocity) + bytes(angular_velocity) +
          bytes(orientation) + bytes(force) + bytes(torque) + bytes(radius) + bytes(mass) +
-         bytes(inertia) + bytes(dof_mask) + bytes(prescribed_velocity) +
-         bytes(prescribed_angular_velocity) + bytes(group_mask) + bytes(coordination) + bytes(id);
+         bytes(inertia) + bytes(dof_mask) + bytes(group_mask) + bytes(coordination) + bytes(id);
 }
 } // namespace dembridge::dem

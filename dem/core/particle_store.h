@@ -9,19 +9,18 @@ namespace dembridge::dem
 {
 struct ParticleStore
 {
-  std::vector<Vec3> position;           // m
-  std::vector<Vec3> reference_position; // m, position when bonds were formed
-  std::vector<Vec3> velocity;           // m/s (at the half step t - dt/2 between steps)
-  std::vector<Vec3> angular_velocity;   // rad/s (global frame, half step)
-  std::vector<Quat> orientation;        // rotation since bond formation
-  std::vector<Vec3> force;              // N, resultant of bonds and external loads
-  std::vector<Vec3> torque;             // N·m
-  std::vector<double> radius;           // m
-  std::vector<double> mass;             // kg
-  std::vector<double> inertia;          // kg·m^2 (scalar: spheres)
-  std::vector<std::uint8_t> dof_mask;   // DofBit: constrained DOFs (fixed or prescribed)
-  std::vector<Vec3> prescribed_velocity;
-  std::vector<Vec3> prescribed_angular_velocity;
+  std::vector<Vec3> position;            // m
+  std::vector<Vec3> reference_position;  // m, position when bonds were formed
+  std::vector<Vec3> velocity;            // m/s (at the half step t - dt/2 between steps)
+  std::vector<Vec3> angular_velocity;    // rad/s (global frame, half step)
+  std::vector<Quat> orientation;         // rotation since bond formation
+  std::vector<Vec3> force;               // N, resultant of bonds and external loads
+  std::vector<Vec3> torque;              // N·m
+  std::vector<double> radius;            // m
+  std::vector<double> mass;              // kg
+  std::vector<double> inertia;           // kg·m^2 (scalar: spheres)
+  std::vector<std::uint8_t> dof_mask;    // DofBit: constrained DOFs (fixed or prescribed); the
+                                         // prescribed values live in the solver (few particles)
   std::vector<std::uint32_t> group_mask; // bit g set: particle belongs to group g
   std::vector<int> coordination;         // number of intact bonds
   /// The particle's id as the user numbers it (its index as generated or read): the stores are

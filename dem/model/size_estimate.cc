@@ -105,9 +105,7 @@ double stored_bytes_per_particle()
   return element(p.position) + element(p.reference_position) + element(p.velocity) +
          element(p.angular_velocity) + element(p.orientation) + element(p.force) +
          element(p.torque) + element(p.radius) + element(p.mass) + element(p.inertia) +
-         element(p.dof_mask) + element(p.prescribed_velocity) +
-         element(p.prescribed_angular_velocity) + element(p.group_mask) +
-         element(p.coordination);
+         element(p.dof_mask) + element(p.group_mask) + element(p.coordination) + element(p.id);
 }
 
 double stored_bytes_per_bond()
@@ -120,8 +118,9 @@ double stored_bytes_per_bond()
          element(b.moment);
 }
 
-// Beyond the stores (twice their size: a vector filled by push_back holds up to twice its
-// elements), measured on the 26,004-particle HCP specimen (docs/trust.md):
+// Beyond the stores (the particle store twice its size: a vector filled by push_back holds up
+// to twice its elements; the bond store once: bond formation reserves it, reordering swaps in
+// exact copies one array at a time), measured on the 26,004-particle HCP specimen (docs/trust.md):
 //  - explicit: dashpot resultants and slab partition per particle, the ParaView patches of a
 //    snapshot (particle: one point, 30 floats; bond: two points, 10 floats per point), the
 //    particle stresses, the bond pair list of bond formation and the slab order per bond;
@@ -138,7 +137,7 @@ double peak_bytes_per_particle(bool static_solver)
 
 double peak_bytes_per_bond(bool static_solver)
 {
-  const double stores = 2 * stored_bytes_per_bond();
+  const double stores = stored_bytes_per_bond() + 24; // + the largest array's reorder copy
   const double output = 300;                 // snapshot patches
   const double formation = 8 + 16;           // pair list, cell list share
   const double solver = static_solver ? 36 * 8 + 2 * 36 * 12 + 4 * 8 : 12;

@@ -39,6 +39,8 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     if (touched[i])
       constrained_.push_back(int(i));
   constrained_v_.resize(constrained_.size());
+  prescribed_v_.assign(constrained_.size(), Vec3::Zero());
+  prescribed_w_.assign(constrained_.size(), Vec3::Zero());
   constrained_w_.resize(constrained_.size());
   constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
   for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
@@ -85,8 +87,8 @@ std::size_t ExplicitSolver::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   std::size_t n = bytes(dashpot_force_) + bytes(dashpot_torque_) + bytes(constrained_) +
-                  bytes(constrained_v_) + bytes(constrained_w_) + bytes(constrained_reaction_) +
-                  bytes(cracks_);
+                  bytes(prescribed_v_) + bytes(prescribed_w_) + bytes(constrained_v_) +
+                  bytes(constrained_w_) + bytes(constrained_reaction_) + bytes(cracks_);
   for (const auto& buffer : crack_buffers_)
     n += bytes(buffer);
   return n;
@@ -302,8 +304,8 @@ void ExplicitSolver::apply_loads()
   {
     const int i = constrained_[c];
     p_.dof_mask[i] = 0;
-    p_.prescribed_velocity[i].setZero();
-    p_.prescribed_angular_velocity[i].setZero();
+    prescribed_v_[c].setZero();
+    prescribed_w_[c].setZero();
     constrained_v_[c] = p_.velocity[i];
     constrained_w_[c] = p_.angular_velocity[i];
   }
@@ -325,12 +327,15 @@ void ExplicitSolver::apply_loads()
               : Vec3(l.value * l.factor(t + 0.5 * dt));
       const bool rot = l.kind == LoadKind::angular_velocity;
       for (int i : members)
+      {
+        const std::size_t c = slot(i);
         for (int k = 0; k < 3; ++k)
           if (l.components & (1u << k))
           {
             p_.dof_mask[i] |= std::uint8_t(1u << (k + (rot ? 3 : 0)));
-            (rot ? p_.prescribed_angular_velocity[i] : p_.prescribed_velocity[i])[k] = value[k];
+            (rot ? prescribed_w_[c] : prescribed_v_[c])[k] = value[k];
           }
+      }
     }
     else
     {
@@ -411,11 +416,16 @@ template <bool record> void ExplicitSolver::integrate()
           lead += damp * 0.5 * after * dt;
         return after;
       };
+      // the prescribed values of a constrained particle; a mask left by someone else (a static
+      // solve) holds its DOFs at rest, as before the values moved into the solver
+      const std::size_t c = mask ? slot(int(i)) : constrained_.size();
+      const bool own = c < constrained_.size() && constrained_[c] == int(i);
+      const Vec3 pv = own ? prescribed_v_[c] : Vec3::Zero();
+      const Vec3 pw = own ? prescribed_w_[c] : Vec3::Zero();
       for (int k = 0; k < 3; ++k)
       {
-        v1[k] = update(mask & (1u << k), p_.prescribed_velocity[i][k], v0[k], F[i][k], m);
-        w1[k] =
-            update(mask & (1u << (k + 3)), p_.prescribed_angular_velocity[i][k], w0[k], M[i][k], I);
+        v1[k] = update(mask & (1u << k), pv[k], v0[k], F[i][k], m);
+        w1[k] = update(mask & (1u << (k + 3)), pw[k], w0[k], M[i][k], I);
       }
     }
     if (mass_damping > 0)
@@ -549,6 +559,12 @@ void ExplicitSolver::step(bool record)
   }
   time_ += settings_.time_step;
   ++steps_;
+}
+
+std::size_t ExplicitSolver::slot(int particle) const
+{
+  return std::size_t(std::lower_bound(constrained_.begin(), constrained_.end(), particle) -
+                     constrained_.begin());
 }
 
 Vec3 ExplicitSolver::group_force(int group) const

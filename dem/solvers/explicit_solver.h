@@ -119,6 +119,8 @@ private:
   void drain_crack_events();
   void apply_loads();
   template <bool record> void integrate();
+  /// Place of a constrained particle in constrained_.
+  std::size_t slot(int particle) const;
   void partition_bonds();
 
   ParticleStore& p_;
@@ -137,6 +139,9 @@ private:
   double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
   double unbalanced_ratio_ = 0;
   std::vector<int> constrained_;    ///< particles touched by any constraint or motion load
+                                    ///< (ascending; slot(i) finds particle i's place)
+  std::vector<Vec3> prescribed_v_;  ///< their prescribed velocity this step (on dof_mask bits)
+  std::vector<Vec3> prescribed_w_;  ///< and angular velocity
   std::vector<Vec3> constrained_v_; ///< their velocity before the step (work of supports)
   std::vector<Vec3> constrained_w_;
   using Vector6 = Eigen::Matrix<double, 6, 1>;

@@ -18,8 +18,6 @@ void visit_particles(StateArchive& a, ParticleStore& p)
   a.io_sized("mass", p.mass);
   a.io_sized("inertia", p.inertia);
   a.io_sized("dof_mask", p.dof_mask);
-  a.io_sized("prescribed_velocity", p.prescribed_velocity);
-  a.io_sized("prescribed_angular_velocity", p.prescribed_angular_velocity);
   a.io_sized("group_mask", p.group_mask);
   a.io_sized("coordination", p.coordination);
 }

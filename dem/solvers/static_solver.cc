@@ -426,8 +426,6 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
     p.orientation[i] = rotation_of(u.segment<3>(6 * i + 3));
     p.velocity[i].setZero();
     p.angular_velocity[i].setZero();
-    p.prescribed_velocity[i].setZero();
-    p.prescribed_angular_velocity[i].setZero();
     p.dof_mask[i] = constrained[i];
     for (int k = 0; k < 6; ++k)
     {
