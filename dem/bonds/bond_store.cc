@@ -20,8 +20,11 @@ void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3&
   damping_moment.push_back(0.0);
   model.push_back(m);
   state.push_back(BondState::intact);
-  force.push_back(Vec3::Zero());
-  moment.push_back(Vec3::Zero());
+  if (force.size() + 1 == a.size()) // records kept (see drop_force_records)
+  {
+    force.push_back(Vec3::Zero());
+    moment.push_back(Vec3::Zero());
+  }
 }
 
 void BondStore::reorder(const std::vector<std::size_t>& order)
@@ -50,8 +53,9 @@ void BondStore::reserve(std::size_t n)
   for (auto* v : {&rest_length, &kn, &ks, &ktor, &kben, &contact_fraction, &radius, &damping_force,
                   &damping_moment})
     v->reserve(n);
-  for (auto* v : {&rest_axis, &force, &moment})
-    v->reserve(n);
+  rest_axis.reserve(n);
+  if (records_forces())
+    force.reserve(n), moment.reserve(n);
   model.reserve(n), state.reserve(n);
 }
 

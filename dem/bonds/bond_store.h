@@ -35,7 +35,9 @@ struct BondStore
   std::vector<BondModel> model;
   std::vector<BondState> state;
   // Last recorded contact-point force and couple acting on particle b (global frame); filled
-  // on recording steps only (output, energy), not on every step.
+  // on recording steps only (ParaView output, the static run's figures, a coupled run's band
+  // check), not on every step. 48 of the 154 bytes of a bond: a run that reads none of them
+  // drops them (drop_force_records), and then they stay empty.
   std::vector<Vec3> force, moment;
 
   // Failure (bond_damage.h, bond_strength.h): one law for the store, strengths and damage per
@@ -50,6 +52,10 @@ struct BondStore
   std::vector<CrackMode> failure_mode;  ///< mode that governed when softening started
 
   std::size_t size() const { return a.size(); }
+  /// Whether force / moment are kept (one entry per bond).
+  bool records_forces() const { return force.size() == a.size(); }
+  /// Frees force / moment; add() then no longer fills them.
+  void drop_force_records() { force = {}, moment = {}; }
   bool has_failure() const { return failure.mode != FailureMode::none; }
   /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
   double load_factor(std::size_t k) const

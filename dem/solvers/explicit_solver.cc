@@ -96,8 +96,10 @@ std::size_t ExplicitSolver::memory_bytes() const
 
 template <bool record, bool dashpots, FailureMode failure>
 void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain,
-                                double& fracture, std::vector<CrackEvent>& events)
+                                double& fracture, double& intact_force, long& intact,
+                                std::vector<CrackEvent>& events)
 {
+  [[maybe_unused]] const bool records = b_.records_forces();
   [[maybe_unused]] const Vec3* v = p_.velocity.data();
   [[maybe_unused]] const Vec3* w = p_.angular_velocity.data();
   Vec3* F = p_.force.data();
@@ -217,8 +219,14 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
           strain += f.strain_energy;
         else
           strain += carried * f.strain_energy; // secant: (1 - D) U_e
-        b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
-        b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+        if (b_.state[k] == BondState::intact)
+          intact_force += std::sqrt(f.Fc[0] * f.Fc[0] + f.Fc[1] * f.Fc[1] + f.Fc[2] * f.Fc[2]),
+              ++intact;
+        if (records)
+        {
+          b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+          b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+        }
       }
     }
   }
@@ -227,23 +235,28 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
 template <bool record, bool dashpots, FailureMode failure>
 void ExplicitSolver::compute_bond_forces()
 {
-  double strain = 0, fracture = 0;
+  double strain = 0, fracture = 0, intact_force = 0;
+  long intact = 0;
   for (int phase = 0; phase < 3; ++phase)
   {
     const auto& ranges = phases_[phase];
     if (ranges.empty())
       continue;
     auto* buffers = crack_buffers_.data() + phase_buffer_[phase];
-#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain, fracture)
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain, fracture, intact_force, intact)
     for (std::size_t r = 0; r < ranges.size(); ++r)
       bond_range<record, dashpots, failure>(ranges[r].first, ranges[r].second, strain, fracture,
-                                            buffers[r]);
+                                            intact_force, intact, buffers[r]);
   }
   for (std::size_t r = 0; r < phases_[3].size(); ++r)
     bond_range<record, dashpots, failure>(phases_[3][r].first, phases_[3][r].second, strain,
-                                          fracture, crack_buffers_[phase_buffer_[3] + r]);
+                                          fracture, intact_force, intact,
+                                          crack_buffers_[phase_buffer_[3] + r]);
   if constexpr (record)
+  {
     energy_.strain = strain;
+    intact_force_ = intact_force, n_intact_ = intact;
+  }
   if constexpr (failure != FailureMode::none)
   {
     energy_.fracture += fracture;
@@ -544,13 +557,8 @@ void ExplicitSolver::step(bool record)
     c->after_update(p_, time_, settings_.time_step, record);
   if (record)
   {
-    double bond_force = 0;
-    long n_intact = 0;
-    for (std::size_t k = 0; k < b_.size(); ++k)
-      if (b_.state[k] == BondState::intact)
-        bond_force += b_.force[k].norm(), ++n_intact;
-    unbalanced_ratio_ = bond_force > 0 ? unbalanced_mean_ * double(n_intact) / bond_force
-                                       : std::numeric_limits<double>::infinity();
+    unbalanced_ratio_ = intact_force_ > 0 ? unbalanced_mean_ * double(n_intact_) / intact_force_
+                                          : std::numeric_limits<double>::infinity();
     energy_.contact_strain = energy_.friction = energy_.contact_damping = energy_.wall_work = 0;
     for (auto* c : contributions_)
       c->add_energy(energy_);

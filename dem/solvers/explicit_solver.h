@@ -113,9 +113,11 @@ public:
 private:
   template <bool record> void dispatch_bond_forces();
   template <bool record, bool dashpots, FailureMode failure> void compute_bond_forces();
+  /// On record steps a range adds its strain energy, and the sum of |F_c| and the count of its
+  /// intact bonds (the unbalanced-force ratio); fracture energy on every step.
   template <bool record, bool dashpots, FailureMode failure>
   void bond_range(std::size_t begin, std::size_t end, double& strain, double& fracture,
-                  std::vector<CrackEvent>& events);
+                  double& intact_force, long& intact, std::vector<CrackEvent>& events);
   void drain_crack_events();
   void apply_loads();
   template <bool record> void integrate();
@@ -138,6 +140,8 @@ private:
   double max_speed_ = 0;
   double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
   double unbalanced_ratio_ = 0;
+  double intact_force_ = 0; ///< sum of |F_c| over the intact bonds at the last record
+  long n_intact_ = 0;
   std::vector<int> constrained_;    ///< particles touched by any constraint or motion load
                                     ///< (ascending; slot(i) finds particle i's place)
   std::vector<Vec3> prescribed_v_;  ///< their prescribed velocity this step (on dof_mask bits)

@@ -67,8 +67,11 @@ void check_lengths(const BondStore& stored, const BondStore& model, const std::s
        {stored.b.size(), stored.rest_length.size(), stored.rest_axis.size(), stored.kn.size(),
         stored.ks.size(), stored.ktor.size(), stored.kben.size(), stored.contact_fraction.size(),
         stored.radius.size(), stored.damping_force.size(), stored.damping_moment.size(),
-        stored.model.size(), stored.state.size(), stored.force.size(), stored.moment.size()})
+        stored.model.size(), stored.state.size()})
     check("(per-bond arrays)", size, n);
+  // force records: kept or dropped (BondStore::drop_force_records) as the model does
+  check("force", stored.force.size(), model.force.size());
+  check("moment", stored.moment.size(), model.moment.size());
   // failure arrays: empty without a failure law, else one entry per bond
   check("tensile_strength", stored.tensile_strength.size(), model.tensile_strength.size());
   check("shear_strength", stored.shear_strength.size(), model.shear_strength.size());
