@@ -10,6 +10,9 @@
 #include "dem_history.h"
 #include "dem_parameters.h"
 #include "dem_static_run.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/bond_network_solver.h"
+#endif
 #include "particle_vtu.h"
 #include "provenance.h"
 #include "version.h"
@@ -51,12 +54,16 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
     if (!out)
       throw std::runtime_error(file.string() + ": cannot write");
     out << "id,x,y,z,radius,s_xx,s_yy,s_zz,s_yz,s_xz,s_xy\n" << std::setprecision(10);
+    // rows in the user's particle numbering (the stores are in spatial order, renumbering.h)
+    std::vector<std::size_t> by_id(p.size());
     for (std::size_t i = 0; i < p.size(); ++i)
+      by_id[std::size_t(p.id[i])] = i;
+    for (const std::size_t i : by_id)
     {
       const auto& x = p.reference_position[i];
       const auto& t = s.sigma[i];
       // symmetric part (the antisymmetric part is the neglected couples' share)
-      out << i << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << p.radius[i] << ','
+      out << p.id[i] << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << p.radius[i] << ','
           << t(0, 0) << ',' << t(1, 1) << ',' << t(2, 2) << ',' << 0.5 * (t(1, 2) + t(2, 1)) << ','
           << 0.5 * (t(0, 2) + t(2, 0)) << ',' << 0.5 * (t(0, 1) + t(1, 0)) << '\n';
     }
@@ -298,6 +305,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
   dem::Model model = dem::build_model(config);
+  // per-bond force records feed the ParaView bond files and the static run's figures only
+  if (!config.run.static_solver && !out.write_vtu)
+    model.bonds.drop_force_records();
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",
               model.particles.size(), model.bonds.size(), prm.get({"Bonds"}, "model").c_str(),
@@ -311,7 +321,20 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   std::vector<dem::CrackEvent> cracks;
   if (config.run.static_solver)
   {
-    const StaticRun run = run_static_load_steps(model, config, out, dir);
+    // Simulation/static linear solver: auto = PETSc's GAMG from 150 k unknowns (where it
+    // starts to beat Jacobi CG, bench/RESULTS_STATIC.md), gamg = always, cg = never.
+    dem::StaticSettings base;
+    const std::string linear = prm.get({"Simulation"}, "static linear solver");
+#ifdef DEMBRIDGE_HAVE_FEM
+    if (linear != "cg")
+      base.iterative_solver = fem::gamg_iterative_solver();
+    base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
+#else
+    if (linear == "gamg")
+      throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
+                            "dembridge was built without the fem layer (use auto or cg)");
+#endif
+    const StaticRun run = run_static_load_steps(model, config, out, dir, base);
     const dem::StaticResult& st = run.last;
     r.stop_reason = "static";
     r.wall_seconds = run.seconds;

@@ -51,7 +51,8 @@ double unbalanced_force_ratio(const dem::ParticleStore& p, const dem::BondStore&
 } // namespace
 
 StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
-                                const OutputSettings& out, const std::filesystem::path& dir)
+                                const OutputSettings& out, const std::filesystem::path& dir,
+                                const dem::StaticSettings& base)
 {
   assign_group_masks(model);
   StaticRun run;
@@ -67,7 +68,7 @@ StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config
   ParticleVtuSeries vtu(dir, group_names(model));
   for (int k = 1; k <= n; ++k)
   {
-    dem::StaticSettings settings;
+    dem::StaticSettings settings = base;
     if (k < n) // the last step is the final state (static_solver.h)
       settings.time = end * double(k) / double(n);
     const double t = k < n ? settings.time : end;

@@ -21,8 +21,10 @@ struct StaticRun
   int load_steps = 1;
 };
 
+/// `base`: the solver settings every step starts from (Simulation/static linear solver).
 StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
-                                const OutputSettings& out, const std::filesystem::path& dir);
+                                const OutputSettings& out, const std::filesystem::path& dir,
+                                const dem::StaticSettings& base = {});
 
 /// Sets every particle's group_mask bit g for the groups g < 32 it belongs to.
 void assign_group_masks(dem::Model& model);

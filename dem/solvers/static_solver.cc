@@ -345,7 +345,7 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
   // Returns false if CG did not converge (max. 2 n iterations).
   auto solve_cg = [&](bool ic)
   {
-    if (!ic && settings.iterative_solver)
+    if (!ic && settings.iterative_solver && n_free >= settings.iterative_solver_min_unknowns)
     {
       const StaticLinearSystem system{
           A, b, index, scale, p.reference_position, settings.cg_tolerance};
