@@ -269,8 +269,9 @@ void CoupledProblem::assemble_constraints()
   }
 }
 
-// dt = safety * min(particle region's own step, FE Gershgorin bound with the tied particles'
-// mass added to their nodes, shared by the shape functions).
+// dt = safety * min(particle region's own step, FE bound (Gershgorin's or the element
+// eigenvalue inequality's) with the tied particles' mass added to their nodes, shared by the
+// shape functions).
 void CoupledProblem::compute_time_step()
 {
   std::vector<double> point_mass(3 * transfer_.n_points(), 0.0);
@@ -284,11 +285,7 @@ void CoupledProblem::compute_time_step()
   transfer_.spread(point_mass, slot_mass);
   fem::LA::MPI::Vector added(fe_->owned_dofs(), comm_);
   transfer_.scatter_add(slot_mass, added);
-  double omega2 = 0;
-  for (const auto i : fe_->owned_dofs())
-    if (fe_->inverse_lumped_mass()(i) > 0)
-      omega2 = std::max(omega2, fe_->stiffness_row_sums()(i) / (fe_->lumped_mass()(i) + added(i)));
-  omega2 = Utilities::MPI::max(omega2, comm_);
+  const double omega2 = fe_->frequency_bound(&added);
   dt_fe_ = omega2 > 0 ? 2.0 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
   const double bound = std::min(dt_particles_, dt_fe_);
   if (settings_.time_step > 0)
@@ -355,7 +352,7 @@ void CoupledProblem::step(bool record)
 
 // Steps 2-5 of the file comment: FE forces and trial velocities, damping, the tie forces, the
 // FE update.
-void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bool /*record*/)
+void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bool record)
 {
   const auto start = std::chrono::steady_clock::now();
   fe_->predict(dt);
@@ -429,7 +426,7 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
   fe_force_ = 0;
   transfer_.scatter_add(slots_force_, fe_force_);
   fe_->apply_force(fe_force_, dt);
-  fe_->update(dt);
+  fe_->update(dt, record);
   // the gap after the step: g^{n+1} = dt (rho - dt S q)
   const auto& Sq = multipliers_.schur_q();
   for (std::size_t k = 0; k < 3 * n; ++k)
@@ -493,8 +490,7 @@ void CoupledProblem::check_band_damage()
       const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
       const Vec3 e = chord.normalized(), F = b.force[k] / alpha, M = b.moment[k] / alpha;
       const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
-      const double tau_max =
-          dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
+      const double tau_max = dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
       const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
       largest = std::max(largest, kappa);
       if (kappa >= 1 && !band_damage_.reached && found[1] == 0)

@@ -29,7 +29,8 @@
 // Both sides use the same step dt = safety * min(dt_DEM, dt_FE): dt_DEM the particle region's
 // own critical step (dem/solvers/time_step.h, unweighted: a tied particle moves with the FE
 // nodes' mass as well, so the pair is never lighter than the particle alone), dt_FE the
-// Gershgorin bound of the continuum with each node's share of the tied particles' mass added.
+// bound of the continuum (Gershgorin or the element eigenvalue inequality, the smaller) with each
+// node's share of the tied particles' mass added.
 //
 // Energy (J). Each side's energy is its weighted share: DEM kinetic 1/2 w_p m v^{n-1/2}.v^{n+1/2}
 // and alpha-weighted bond strain energy; FE 1/2 v^{n-1/2}.M_w v^{n+1/2} and 1/2 u.K_(1-alpha) u.

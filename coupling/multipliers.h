@@ -27,9 +27,10 @@
 //   lumped  the constraint matrix A (S, or G^T S G) replaced by its row-sum diagonal A 1 (the
 //           paper's choice: local, one division per multiplier); the tie is then met only
 //           approximately each step, the gap term carries the rest into the next step;
-//   exact   on one process with particle tying: S is constant (fixed G and masses), so it is
-//           assembled once per component (S_pq = sum_I N_I(X_p) N_I(X_q) / M_I + delta_pq / m_p)
-//           and factorised once (sparse Cholesky); each step is one pair of triangular solves.
+//   exact   on one process with particle tying: S is constant (fixed G and masses); its
+//           inverse is applied through the Woodbury identity on the slots (multipliers.cc),
+//           whose small matrix is factorised once (sparse Cholesky); each step is a spread, one
+//           pair of triangular solves over the slots and an interpolation.
 //           Otherwise conjugate gradients on A, the lumped diagonal as preconditioner, to a
 //           relative residual `tolerance` (a few iterations: A is dominated by its
 //           particle-mass diagonal). On the bending beam's 600 interface particles the factorised
@@ -79,12 +80,15 @@ public:
 private:
   void apply_constraint_matrix(const std::vector<double>& x, std::vector<double>& y);
   void factorise();
+  void solve_factorised(const std::vector<double>& b, std::vector<double>& q);
 
-  /// The factorised S per component (one process, particle tying, exact solve).
+  /// The slots' matrix A_c of the Woodbury form of S^-1 per component, factorised (one
+  /// process, particle tying, exact solve; multipliers.cc).
   using Sparse = Eigen::SparseMatrix<double>;
-  std::array<Sparse, 3> S_;
+  std::array<Sparse, 3> A_;
   std::array<std::unique_ptr<Eigen::SimplicialLLT<Sparse>>, 3> factor_;
-  Eigen::VectorXd rhs_, sol_;
+  bool shared_factor_ = false; ///< one factor for the three components
+  Eigen::MatrixXd rhs_, sol_;  ///< n_slots x 3 (shared factor) or n_slots x 1
 
   const PointTransfer* G_ = nullptr;
   std::vector<double> inv_m_, inv_M_;

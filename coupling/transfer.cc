@@ -1,4 +1,5 @@
 #include "coupling/transfer.h"
+#include "fem/local_array.h"
 
 #include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/fe/fe_q.h>
@@ -12,40 +13,6 @@
 namespace dembridge::coupling
 {
 using namespace dealii;
-
-namespace
-{
-/// Read or write access to the local form (owned entries, then ghosts) of a PETSc vector.
-class LocalForm
-{
-public:
-  explicit LocalForm(const fem::LA::MPI::Vector& v) : vec(static_cast<const Vec&>(v))
-  {
-    VecGhostGetLocalForm(vec, &local);
-    const PetscErrorCode ierr = VecGetArray(local ? local : vec, &values);
-    AssertThrow(ierr == 0, ExcPETScError(ierr));
-  }
-  ~LocalForm()
-  {
-    VecRestoreArray(local ? local : vec, &values);
-    if (local)
-      VecGhostRestoreLocalForm(vec, &local);
-  }
-  LocalForm(const LocalForm&) = delete;
-  LocalForm& operator=(const LocalForm&) = delete;
-  double& operator[](const std::size_t i) { return values[i]; }
-  std::size_t size() const
-  {
-    PetscInt n = 0;
-    VecGetLocalSize(local ? local : vec, &n);
-    return std::size_t(n);
-  }
-
-private:
-  Vec vec, local = nullptr;
-  PetscScalar* values = nullptr;
-};
-} // namespace
 
 void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
                            const std::string& where)
@@ -162,13 +129,13 @@ void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& s
   if (parallel_)
   {
     ghosted_ = x; // copies the owned part and updates the ghosts
-    LocalForm a(ghosted_);
+    fem::LocalArray a(ghosted_);
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
       slots[k] = a[slot_local_[k]];
   }
   else
   {
-    LocalForm a(x);
+    fem::LocalArray a(x);
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
       slots[k] = a[slot_local_[k]];
   }
@@ -178,22 +145,20 @@ void PointTransfer::scatter_add(const std::vector<double>& slots, fem::LA::MPI::
 {
   if (!parallel_)
   {
-    LocalForm a(f);
+    fem::LocalArray a(f);
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
       a[slot_local_[k]] += slots[k];
     return;
   }
   {
-    LocalForm w(ghosted_);
+    fem::LocalArray w(ghosted_);
     for (std::size_t i = 0; i < w.size(); ++i)
       w[i] = 0;
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
       w[slot_local_[k]] += slots[k];
   }
-  const Vec v = static_cast<const Vec&>(ghosted_);
-  VecGhostUpdateBegin(v, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE);
-  LocalForm w(ghosted_), a(f);
+  fem::add_ghosts_to_owners(ghosted_);
+  fem::LocalArray w(ghosted_), a(f);
   const std::size_t n = fem::LA::MPI::Vector::size_type(f.locally_owned_size());
   for (std::size_t i = 0; i < n; ++i)
     a[i] += w[i];
@@ -204,7 +169,7 @@ void PointTransfer::assemble(std::vector<double>& slots) const
   if (!parallel_)
     return;
   {
-    LocalForm w(ghosted_);
+    fem::LocalArray w(ghosted_);
     for (std::size_t i = 0; i < w.size(); ++i)
       w[i] = 0;
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
@@ -215,7 +180,7 @@ void PointTransfer::assemble(std::vector<double>& slots) const
   VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateBegin(v, INSERT_VALUES, SCATTER_FORWARD);
   VecGhostUpdateEnd(v, INSERT_VALUES, SCATTER_FORWARD);
-  LocalForm w(ghosted_);
+  fem::LocalArray w(ghosted_);
   for (std::size_t k = 0; k < slot_local_.size(); ++k)
     slots[k] = w[slot_local_[k]];
 }

@@ -1,5 +1,6 @@
 // dembridge::fem — the linear elastic continuum: mesh, DoFs, constraints, assembly, solve.
 #include "elastic_problem.h"
+#include "fem/incompatible_modes.h"
 
 #include "material.h"
 
@@ -274,6 +275,9 @@ void ElasticProblem::assemble_system(const bool condense)
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   FEFaceValues<3> fe_face_values(mapping, fe, face_quadrature, update_values | update_JxW_values);
+  // incompatible modes: the Jacobian at the cell centre (incompatible_modes.h)
+  const QMidpoint<3> centre;
+  FEValues<3> centre_values(mapping, fe, centre, update_inverse_jacobians | update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   FullMatrix<double> cell_matrix(n, n);
   Vector<double> cell_rhs(n);
@@ -295,8 +299,7 @@ void ElasticProblem::assemble_system(const bool condense)
           e[c] = 1;
           eps[i] = symmetrize(outer_product(e, fe_values.shape_grad(i, q)));
         }
-        const double w =
-            stiffness_weight ? stiffness_weight(fe_values.quadrature_point(q)) : 1.0;
+        const double w = stiffness_weight ? stiffness_weight(fe_values.quadrature_point(q)) : 1.0;
         for (unsigned int i = 0; i < n; ++i)
         {
           const SymmetricTensor<2, 3> C_eps_i = stiffness * eps[i];
@@ -305,6 +308,13 @@ void ElasticProblem::assemble_system(const bool condense)
           cell_rhs(i) += fe_values.shape_value(i, q) *
                          prm.body_force[fe.system_to_component_index(i).first] * fe_values.JxW(q);
         }
+      }
+      if (prm.incompatible_modes)
+      {
+        centre_values.reinit(cell);
+        condense_incompatible_modes(fe_values, stiffness, stiffness_weight, prm.body_force,
+                                    centre_values.inverse_jacobian(0), centre_values.JxW(0),
+                                    cell_matrix, cell_rhs);
       }
       for (const auto& face : cell->face_iterators())
         if (face->at_boundary() && traction.count(face->boundary_id()))
@@ -322,7 +332,11 @@ void ElasticProblem::assemble_system(const bool condense)
         constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, system_matrix,
                                                system_rhs);
       else
+      {
         system_matrix.add(dofs, cell_matrix);
+        if (cell_matrix_sink)
+          cell_matrix_sink(dofs, cell_matrix);
+      }
     }
 
   std::vector<std::pair<types::global_dof_index, double>> nodal;

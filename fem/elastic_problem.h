@@ -21,6 +21,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/generic_linear_algebra.h>
 
 #include <filesystem>
@@ -123,6 +124,11 @@ protected:
   /// Weight of the stiffness at a point, C -> w(x) C in the assembly (a coupled run's 1 - alpha
   /// in the handshake band, coupling/); empty: 1 everywhere.
   std::function<double(const dealii::Point<3>&)> stiffness_weight;
+  /// Called with every cell's DoFs and element matrix by an unconstrained assembly (the
+  /// explicit step's cell-by-cell operator, element_operator.h).
+  std::function<void(const std::vector<dealii::types::global_dof_index>&,
+                     const dealii::FullMatrix<double>&)>
+      cell_matrix_sink;
   double geometric_tolerance = 0;
 
   dealii::IndexSet locally_owned_dofs;

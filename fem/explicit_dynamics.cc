@@ -1,5 +1,6 @@
 // dembridge::fem — explicit elastodynamics (lumped mass, central differences).
 #include "explicit_dynamics.h"
+#include "fem/local_array.h"
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -8,8 +9,6 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <petscvec.h>
-
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -17,29 +16,6 @@
 namespace dembridge::fem
 {
 using namespace dealii;
-
-namespace
-{
-/// The owned entries of a PETSc vector as a plain array, for fused loops without a PETSc call
-/// per entry.
-class OwnedArray
-{
-public:
-  explicit OwnedArray(const LA::MPI::Vector& v) : vec(static_cast<const Vec&>(v))
-  {
-    const PetscErrorCode ierr = VecGetArray(vec, &values);
-    AssertThrow(ierr == 0, ExcPETScError(ierr));
-  }
-  ~OwnedArray() { VecRestoreArray(vec, &values); }
-  OwnedArray(const OwnedArray&) = delete;
-  OwnedArray& operator=(const OwnedArray&) = delete;
-  double& operator[](const std::size_t i) { return values[i]; }
-
-private:
-  Vec vec;
-  PetscScalar* values = nullptr;
-};
-} // namespace
 
 ExplicitDynamics::ExplicitDynamics(const Parameters& parameters, MPI_Comm comm)
     : ElasticProblem(parameters, comm)
@@ -64,10 +40,13 @@ void ExplicitDynamics::setup()
   else
     make_grid();
   setup_system();
+  cell_operator.reinit(locally_owned_dofs, locally_relevant_dofs, fe.n_dofs_per_cell(),
+                       mpi_communicator);
+  cell_matrix_sink = [this](const auto& dofs, const auto& m) { cell_operator.add_cell(dofs, m); };
   assemble_system(/*condense=*/false);
+  cell_matrix_sink = nullptr;
   for (auto* v : {&mass, &mass_unweighted, &inverse_mass, &row_sums, &u_owned, &velocity_half,
-                  &velocity_trial, &internal_force, &applied_force, &step_force, &outside_force,
-                  &u_previous, &velocity_previous})
+                  &velocity_trial, &internal_force, &applied_force, &step_force, &outside_force})
     v->reinit(locally_owned_dofs, mpi_communicator);
   for (const auto& line : constraints.get_lines())
     has_hanging_nodes = has_hanging_nodes || !line.entries.empty();
@@ -110,6 +89,7 @@ void ExplicitDynamics::assemble_lumped_mass()
         }
       }
       cell->get_dof_indices(dofs);
+      cell_operator.add_cell_mass(cell_mass);
       mass.add(dofs, cell_mass);
       mass_unweighted.add(dofs, cell_mass_unweighted);
     }
@@ -126,10 +106,9 @@ void ExplicitDynamics::assemble_lumped_mass()
 }
 
 // Gershgorin: every eigenvalue of M^-1 K lies below max_i sum_j |K_ij| / M_ii; rows of fixed
-// or driven DoFs do not move and are left out.
+// or driven DoFs do not move and are left out. The element bound is taken where it is smaller.
 void ExplicitDynamics::compute_stable_time_step()
 {
-  double omega2 = 0;
   for (const auto row : locally_owned_dofs)
   {
     double sum = 0;
@@ -137,11 +116,40 @@ void ExplicitDynamics::compute_stable_time_step()
       for (auto entry = system_matrix.begin(row); entry != system_matrix.end(row); ++entry)
         sum += std::abs(entry->value());
     row_sums(row) = sum;
-    omega2 = std::max(omega2, sum * inverse_mass(row));
   }
   row_sums.compress(VectorOperation::insert);
-  omega2 = Utilities::MPI::max(omega2, mpi_communicator);
+  const double omega2 = frequency_bound();
   critical_time_step = omega2 > 0 ? 2.0 / std::sqrt(omega2) : 0.0;
+}
+
+double ExplicitDynamics::frequency_bound(const LA::MPI::Vector* added_mass) const
+{
+  double gershgorin = 0;
+  for (const auto i : locally_owned_dofs)
+    if (inverse_mass(i) > 0)
+      gershgorin =
+          std::max(gershgorin, row_sums(i) / (mass(i) + (added_mass ? (*added_mass)(i) : 0.0)));
+  gershgorin = Utilities::MPI::max(gershgorin, mpi_communicator);
+  if (!cell_operator.active())
+    return gershgorin;
+  const IndexSet ghosts = [&]
+  {
+    IndexSet g = locally_relevant_dofs;
+    g.subtract_set(locally_owned_dofs);
+    return g;
+  }();
+  LA::MPI::Vector scale(locally_owned_dofs, ghosts, mpi_communicator),
+      moves(locally_owned_dofs, ghosts, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+  {
+    scale(i) = added_mass ? (mass(i) + (*added_mass)(i)) / mass(i) : 1.0;
+    moves(i) = inverse_mass(i) > 0 ? 1.0 : 0.0;
+  }
+  scale.compress(VectorOperation::insert);
+  moves.compress(VectorOperation::insert);
+  scale.update_ghost_values();
+  moves.update_ghost_values();
+  return std::min(gershgorin, cell_operator.frequency_bound(scale, moves));
 }
 
 void ExplicitDynamics::apply_initial_displacement()
@@ -212,10 +220,12 @@ void ExplicitDynamics::prescribe_boundary_displacement(const types::boundary_id 
 // Phase 1: f^n = f_ext + f_applied - K u_n - c M v_{n-1/2}; trial velocity.
 void ExplicitDynamics::predict(const double dt)
 {
-  TimerOutput::Scope t(computing_timer, "explicit step");
-  system_matrix.vmult(internal_force, u_owned);
+  if (cell_operator.active())
+    cell_operator.vmult(internal_force, solution); // u_n with its ghosts (see update())
+  else
+    system_matrix.vmult(internal_force, u_owned);
   const std::size_t n = locally_owned_dofs.n_elements();
-  OwnedArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
+  LocalArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
       minv(inverse_mass), v(velocity_half), vt(velocity_trial), fo(outside_force);
   const bool first_half = step_number == 0 && half_step_start;
   for (std::size_t i = 0; i < n; ++i)
@@ -233,7 +243,7 @@ void ExplicitDynamics::predict(const double dt)
 void ExplicitDynamics::apply_force(const LA::MPI::Vector& force, const double dt)
 {
   const std::size_t n = locally_owned_dofs.n_elements();
-  OwnedArray f(force), minv(inverse_mass), vt(velocity_trial), fo(outside_force);
+  LocalArray f(force), minv(inverse_mass), vt(velocity_trial), fo(outside_force);
   for (std::size_t i = 0; i < n; ++i)
   {
     vt[i] += dt * minv[i] * f[i];
@@ -242,18 +252,17 @@ void ExplicitDynamics::apply_force(const LA::MPI::Vector& force, const double dt
   outside_force_applied = true;
 }
 
-// Phase 3: v_{n+1/2}, u_{n+1}, the energies of step n and the works up to t_n.
-void ExplicitDynamics::update(const double dt)
+// Phase 3: v_{n+1/2}, u_{n+1}; the works summed every step, the energies of step n on record.
+void ExplicitDynamics::update(const double dt, const bool record)
 {
-  TimerOutput::Scope t(computing_timer, "explicit step");
   const std::size_t n = locally_owned_dofs.n_elements();
   {
-    OwnedArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
-        v(velocity_half), vt(velocity_trial), fo(outside_force), u(u_owned), up(u_previous),
-        vp(velocity_previous);
+    LocalArray f(step_force), Ku(internal_force), fe_(external_force), fa(applied_force), m(mass),
+        v(velocity_half), vt(velocity_trial), fo(outside_force), u(u_owned);
     // Works are summed as f^n . (v_{n-1/2} + v_{n+1/2}) / 2 dt; the shadow energy H_n has only
     // received f^n . v_{n+1/2} dt / 2 less of it (H_{n+1} - H_n = (f^n + f^{n+1}) / 2 .
-    // v_{n+1/2} dt), so each work is reported without that half-step lead.
+    // v_{n+1/2} dt), so each work is reported without that half-step lead. Each rank sums its
+    // own share; the shares are added over the ranks on record steps only.
     double lead_boundary = 0;
     for (const auto& d : driven) // u_{n+1} = ramp(t_{n+1}) g: the reaction is what that takes
     {
@@ -263,36 +272,53 @@ void ExplicitDynamics::update(const double dt)
       lead_boundary += reaction * 0.5 * vd * dt;
       vt[d.local] = vd;
     }
-    double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    for (std::size_t i = 0; i < n; ++i)
+    if (!record)
     {
-      const double v0 = v[i], v1 = vt[i], mean = 0.5 * (v0 + v1);
-      sums[0] += 0.5 * m[i] * v0 * v1;
-      sums[1] += 0.5 * m[i] * mean * mean;
-      sums[2] += 0.5 * u[i] * Ku[i];
-      sums[3] -= fe_[i] * u[i];
-      sums[4] += mass_damping * m[i] * v0 * mean * dt;
-      sums[5] += (fa[i] + fo[i]) * mean * dt;
-      sums[6] += mass_damping * m[i] * v0 * v1 * 0.5 * dt; // leads (see above)
-      sums[7] += (fa[i] + fo[i]) * v1 * 0.5 * dt;
-      up[i] = u[i];
-      vp[i] = v0;
-      v[i] = v1;
-      u[i] += dt * v1;
+      double damping = 0, outside = 0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double v0 = v[i], v1 = vt[i], mean = 0.5 * (v0 + v1);
+        damping += m[i] * v0 * mean;
+        outside += (fa[i] + fo[i]) * mean;
+        v[i] = v1;
+        u[i] += dt * v1;
+      }
+      damping_summed += mass_damping * damping * dt;
+      outside_work_summed += outside * dt;
     }
-    lead_boundary = Utilities::MPI::sum(lead_boundary, mpi_communicator);
-    boundary_work_summed_all = Utilities::MPI::sum(boundary_work_summed, mpi_communicator);
-    Utilities::MPI::sum(ArrayView<const double>(sums, 8), mpi_communicator,
-                        ArrayView<double>(sums, 8));
-    energy.kinetic_shadow = sums[0];
-    energy.kinetic = sums[1];
-    energy.strain = sums[2];
-    energy.load_potential = sums[3];
-    damping_summed += sums[4];
-    outside_work_summed += sums[5];
-    energy.damping = damping_summed - sums[6];
-    energy.outside_work = outside_work_summed - sums[7];
-    energy.boundary_work = boundary_work_summed_all - lead_boundary;
+    else
+    {
+      double sums[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double v0 = v[i], v1 = vt[i], mean = 0.5 * (v0 + v1);
+        sums[0] += 0.5 * m[i] * v0 * v1;
+        sums[1] += 0.5 * m[i] * mean * mean;
+        sums[2] += 0.5 * u[i] * Ku[i];
+        sums[3] -= fe_[i] * u[i];
+        sums[4] += mass_damping * m[i] * v0 * mean * dt;
+        sums[5] += (fa[i] + fo[i]) * mean * dt;
+        sums[6] += mass_damping * m[i] * v0 * v1 * 0.5 * dt; // leads (see above)
+        sums[7] += (fa[i] + fo[i]) * v1 * 0.5 * dt;
+        v[i] = v1;
+        u[i] += dt * v1;
+      }
+      damping_summed += sums[4];
+      outside_work_summed += sums[5];
+      sums[4] = damping_summed;
+      sums[5] = outside_work_summed;
+      sums[8] = boundary_work_summed;
+      sums[9] = lead_boundary;
+      Utilities::MPI::sum(ArrayView<const double>(sums, 10), mpi_communicator,
+                          ArrayView<double>(sums, 10));
+      energy.kinetic_shadow = sums[0];
+      energy.kinetic = sums[1];
+      energy.strain = sums[2];
+      energy.load_potential = sums[3];
+      energy.damping = sums[4] - sums[6];
+      energy.outside_work = sums[5] - sums[7];
+      energy.boundary_work = sums[8] - sums[9];
+    }
   }
   if (has_hanging_nodes)
     constraints.distribute(u_owned);
@@ -305,40 +331,6 @@ void ExplicitDynamics::step(const double dt)
 {
   predict(dt);
   update(dt);
-}
-
-// ------------------------------------------------------------------------------------------
-std::pair<double, double>
-ExplicitDynamics::energy_in(const std::function<bool(const Point<3>&)>& in_region)
-{
-  std::map<types::global_dof_index, Point<3>> support;
-  DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
-  double kinetic = 0;
-  for (const auto i : locally_owned_dofs)
-    if (in_region(support.at(i)))
-      kinetic += 0.5 * mass(i) * velocity_previous(i) * velocity_half(i);
-  // strain of u_n: cell by cell with the weighted stiffness
-  LA::MPI::Vector u_n(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-  u_n = u_previous;
-  const QGauss<3> quadrature(fe.degree + 1);
-  FEValues<3> fe_values(mapping, fe, quadrature,
-                        update_gradients | update_quadrature_points | update_JxW_values);
-  const FEValuesExtractors::Vector displacement(0);
-  std::vector<SymmetricTensor<2, 3>> eps(quadrature.size());
-  double strain = 0;
-  for (const auto& cell : dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned() && in_region(cell->center()))
-    {
-      fe_values.reinit(cell);
-      fe_values[displacement].get_function_symmetric_gradients(u_n, eps);
-      for (const unsigned int q : fe_values.quadrature_point_indices())
-      {
-        const double w = stiffness_weight ? stiffness_weight(fe_values.quadrature_point(q)) : 1.0;
-        strain += 0.5 * w * (eps[q] * (stiffness * eps[q])) * fe_values.JxW(q);
-      }
-    }
-  return {Utilities::MPI::sum(kinetic, mpi_communicator),
-          Utilities::MPI::sum(strain, mpi_communicator)};
 }
 
 std::string ExplicitDynamics::output(const std::filesystem::path& output_dir,

@@ -12,7 +12,9 @@
 // M_ii = int w_M rho phi_i^2 dx and the off-diagonal terms vanish. Coupled runs weight the
 // density by w_M(x) and the stiffness by w_K(x) at the quadrature points (the handshake band's
 // 1 - alpha, coupling/handshake.h); both are 1 otherwise. Stable for dt < 2 / omega_max;
-// omega_max^2 is bounded by Gershgorin's theorem, max_i sum_j |K_ij| / M_ii.
+// omega_max^2 is bounded by Gershgorin's theorem, max_i sum_j |K_ij| / M_ii, and for FE_Q1 by
+// the element eigenvalue inequality (element_operator.h), whichever is smaller. K u_n is
+// applied cell by cell for FE_Q1 (element_operator.h), by the assembled matrix otherwise.
 //
 // One step, three phases:
 //   predict(dt)        f^n = f_ext - K u_n - c M v_{n-1/2};  trial  v^ = v_{n-1/2} + dt M^-1 f^n
@@ -31,6 +33,7 @@
 #pragma once
 
 #include "elastic_problem.h"
+#include "element_operator.h"
 
 #include <deal.II/base/function.h>
 
@@ -68,17 +71,20 @@ public:
                                        const dealii::Function<3>& g,
                                        std::function<double(double)> ramp);
 
-  /// 2 / omega_max from the Gershgorin bound (s); the step is factor * this value.
+  /// 2 / omega_max from the bound below (s); the step is factor * this value.
   double stable_time_step() const { return critical_time_step; }
-  /// Gershgorin row sums sum_j |K_ij| (owned; 0 on constrained and driven DoFs): a caller that
-  /// adds mass to DoFs (the coupling's tied particles) bounds omega_max^2 by row_sum / mass.
-  const LA::MPI::Vector& stiffness_row_sums() const { return row_sums; }
+  /// An upper bound on omega_max^2 of M^-1 K over the DoFs that move, with @p added_mass (owned;
+  /// nullptr: none) on the nodes: the smaller of Gershgorin's, max_i sum_j |K_ij| / M_ii, and
+  /// the element eigenvalue inequality's (element_operator.h), both rigorous (collective).
+  double frequency_bound(const LA::MPI::Vector* added_mass = nullptr) const;
 
   /// One central-difference step of size dt (predict, update).
   void step(double dt);
   void predict(double dt);
   void apply_force(const LA::MPI::Vector& f, double dt);
-  void update(double dt);
+  /// With record = false only the works are summed; energies() then still hold an earlier
+  /// step's values.
+  void update(double dt, bool record = true);
 
   double time() const { return current_time; }
   unsigned int n_steps_done() const { return step_number; }
@@ -109,6 +115,9 @@ public:
     return triangulation;
   }
   const dealii::AffineConstraints<double>& get_constraints() const { return constraints; }
+  /// The assembled (weighted, unconstrained) stiffness matrix and its cell-by-cell form.
+  const LA::MPI::SparseMatrix& stiffness_matrix() const { return system_matrix; }
+  const ElementOperator& element_operator() const { return cell_operator; }
 
   /// Energies at the last completed step n (J); see the file comment.
   struct Energies
@@ -125,12 +134,6 @@ public:
   };
   const Energies& energies() const { return energy; }
 
-  /// Kinetic and strain energy of the part of the body selected by @p in_region (nodes by
-  /// position for the kinetic part, cells by centre for the strain part), at the last
-  /// completed step; for measurements (collective, not for every step).
-  std::pair<double, double>
-  energy_in(const std::function<bool(const dealii::Point<3>&)>& in_region);
-
   /// Writes displacement, strain, stress (.vtu per rank, .pvtu, FEM/Output/base name .pvd);
   /// returns the .pvtu file name (relative to @p output_dir).
   std::string output(const std::filesystem::path& output_dir, unsigned int cycle, double time);
@@ -146,6 +149,8 @@ private:
   bool half_step_start = true;
   bool has_hanging_nodes = false;
 
+  /// K u cell by cell (FE_Q1; otherwise the assembled matrix is used)
+  ElementOperator cell_operator;
   LA::MPI::Vector mass, mass_unweighted, inverse_mass, row_sums;
   LA::MPI::Vector u_owned, velocity_half, velocity_trial, internal_force, applied_force, step_force,
       outside_force;
@@ -160,13 +165,10 @@ private:
   };
   std::vector<DrivenDof> driven;
   std::vector<std::function<double(double)>> drive_ramps;
-  /// u_n and v_{n-1/2} of the last completed step n (energy_in).
-  LA::MPI::Vector u_previous, velocity_previous;
 
-  /// The works as summed step by step (trapezoidal, with the half-step lead, see update());
-  /// boundary_work_summed is this rank's share.
-  double boundary_work_summed = 0, boundary_work_summed_all = 0, damping_summed = 0,
-         outside_work_summed = 0;
+  /// The works as summed step by step (trapezoidal, with the half-step lead, see update()):
+  /// this rank's shares.
+  double boundary_work_summed = 0, damping_summed = 0, outside_work_summed = 0;
   double critical_time_step = 0;
   double current_time = 0;
   unsigned int step_number = 0;

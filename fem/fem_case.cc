@@ -54,7 +54,8 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
         << std::endl;
   if (const std::string free = problem.free_rigid_body_modes(); !free.empty())
     throw std::runtime_error("FEM/Boundary conditions: the supports leave rigid-body modes free (" +
-                             free + "), so the static problem has no unique solution; hold "
+                             free +
+                             "), so the static problem has no unique solution; hold "
                              "more components (e.g. 'points = X,Y,Z: xyz')");
   // why: assembly and the AMG solve of a large mesh take minutes; say what is running
   Timer phase;
@@ -278,6 +279,10 @@ nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path
 nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm)
 {
   nlohmann::json summary;
+  if (p.incompatible_modes && p.problem == ProblemKind::static_elasticity)
+    throw std::runtime_error("FEM/incompatible modes: explicit dynamics and coupled runs only "
+                             "(a static run's stresses and strain energy are evaluated on the "
+                             "nodal field)");
   if (p.problem == ProblemKind::static_elasticity)
     summary = run_static(p, output_dir, comm);
   else

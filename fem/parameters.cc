@@ -131,6 +131,12 @@ void declare_fem_parameters(ParameterHandler& prm)
                       "central differences with a lumped mass matrix.");
     prm.declare_entry("degree", "1", Patterns::Integer(1, 2),
                       "Polynomial degree of the vector FE_Q displacement element.");
+    prm.declare_entry("incompatible modes", "false", Patterns::Bool(),
+                      "Degree 1 only, explicit dynamics and coupled runs: enrich each cell by "
+                      "the nine bubble modes of Wilson's incompatible element, condensed out "
+                      "(Taylor et al. 1976), so that beams of a few cells through the depth do "
+                      "not lock in bending. Written stresses and strains are those of the nodal "
+                      "(compatible) field.");
 
     prm.enter_subsection("Mesh");
     prm.declare_entry("source", "box", Patterns::Selection("box|gmsh"),
@@ -270,6 +276,11 @@ Parameters parse_parameters(const ParameterHandler& prm)
   p.problem = prm.get(fem, "problem") == "static" ? ProblemKind::static_elasticity
                                                   : ProblemKind::explicit_dynamics;
   p.degree = prm.get_integer(fem, "degree");
+  p.incompatible_modes = prm.get_bool(fem, "incompatible modes");
+  if (p.incompatible_modes && p.degree != 1)
+    fail("FEM/incompatible modes", "the incompatible modes enrich degree 1 cells only (FEM/degree "
+                                   "is " +
+                                       std::to_string(p.degree) + ")");
 
   const Path mesh{"FEM", "Mesh"};
   p.mesh_source = prm.get(mesh, "source") == "box" ? MeshSource::box : MeshSource::gmsh;

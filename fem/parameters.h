@@ -105,6 +105,9 @@ struct Parameters
   // FEM
   ProblemKind problem = ProblemKind::static_elasticity;
   unsigned int degree = 1;
+  /// Q1 cells enriched by condensed incompatible modes (incompatible_modes.h): no shear locking
+  /// in bending; explicit dynamics and coupled runs only.
+  bool incompatible_modes = false;
   // FEM/Mesh
   MeshSource mesh_source = MeshSource::box;
   std::string mesh_file;
