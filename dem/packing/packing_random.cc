@@ -5,15 +5,13 @@
 #include "dem/packing/packing_random.h"
 #include "dem/core/progress.h"
 #include "dem/packing/cell_list.h"
+#include "dem/packing/overlap_forces.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
 #include <numbers>
 #include <random>
 
@@ -218,122 +216,14 @@ public:
       clamp(i);
   }
 
-  /// Overlap forces f_i = sum_j delta_ij n_ji (unit stiffness); returns the mean overlap per
-  /// contact / mean radius and the largest overlap / smaller current radius.
-  /// The sums run over the pairs in list order, one pair at a time, whatever the path: the
-  /// vector path below only computes the pairs' terms eight at a time (exactly, as every
-  /// operation is a correctly rounded IEEE one and this file is built without fused
-  /// multiply-adds), so both give bitwise the same packing.
+  /// Overlap forces f_i = sum_j delta_ij n_ji (unit stiffness, overlap_forces.h); returns the
+  /// mean overlap per contact / mean radius and the largest overlap / smaller current radius.
   std::pair<double, double> forces()
   {
     update_list();
-    std::fill(f_.begin(), f_.end(), Vec3::Zero());
-    double sum_overlap = 0, worst = 0;
-    long contacts = 0;
-    const double s = s_;
-    Vec3* const f = f_.data();
-    const Vec3* const x = x_.data();
-    // One contact's contribution, in list order.
-    auto add = [&](int i, int j, const Vec3& fd, double delta)
-    {
-      f[i] -= fd;
-      f[j] += fd;
-      sum_overlap += delta;
-      ++contacts;
-    };
-    std::size_t k = 0;
-#if defined(__AVX512F__)
-    // Pass 1: the pairs in contact, eight pairs a step, packed in list order into the contact
-    // buffers (their centre distance vectors, squared distances, radius sums and smaller radii).
-    const double* X = x_.empty() ? nullptr : x_[0].data();
-    const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
-    const __m256i three = _mm256_set1_epi32(3);
-    const std::size_t np = vector_path_ ? pair_i_.size() - pair_i_.size() % 8 : 0;
-    if (contact_.size() < 10 * (np + 8))
-      contact_.resize(10 * (np + 8));
-    double* const cx = contact_.data();
-    double *const cy = cx + np + 8, *const cz = cy + np + 8, *const cd2 = cz + np + 8;
-    double *const csum = cd2 + np + 8, *const cmin = csum + np + 8;
-    double *const cfx = cmin + np + 8, *const cfy = cfx + np + 8, *const cfz = cfy + np + 8;
-    double* const cdelta = cfz + np + 8;
-    if (contact_pair_.size() < 2 * (np + 8))
-      contact_pair_.resize(2 * (np + 8));
-    int* const ci = contact_pair_.data();
-    int* const cj = ci + np + 8;
-    std::size_t nc = 0;
-    for (; k < np; k += 8)
-    {
-      const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pair_i_[k]));
-      const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pair_j_[k]));
-      const __m256i i3 = _mm256_mullo_epi32(vi, three), j3 = _mm256_mullo_epi32(vj, three);
-      const __m512d dx =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X, 8), _mm512_i32gather_pd(i3, X, 8));
-      const __m512d dy =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X + 1, 8), _mm512_i32gather_pd(i3, X + 1, 8));
-      const __m512d dz =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X + 2, 8), _mm512_i32gather_pd(i3, X + 2, 8));
-      // (dx^2 + dy^2) + dz^2, as Eigen's squaredNorm sums
-      const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
-                                       _mm512_mul_pd(dz, dz));
-      const __m512d sum = _mm512_mul_pd(vs, _mm512_loadu_pd(&pair_radius_sum_[k]));
-      // contact unless d2 >= sum^2 (the scalar test, negated exactly)
-      const __mmask8 touching = _mm512_cmp_pd_mask(d2, _mm512_mul_pd(sum, sum), _CMP_NGE_UQ);
-      if (!touching)
-        continue;
-      _mm512_storeu_pd(cx + nc, _mm512_maskz_compress_pd(touching, dx));
-      _mm512_storeu_pd(cy + nc, _mm512_maskz_compress_pd(touching, dy));
-      _mm512_storeu_pd(cz + nc, _mm512_maskz_compress_pd(touching, dz));
-      _mm512_storeu_pd(cd2 + nc, _mm512_maskz_compress_pd(touching, d2));
-      _mm512_storeu_pd(csum + nc, _mm512_maskz_compress_pd(touching, sum));
-      _mm512_storeu_pd(cmin + nc,
-                       _mm512_maskz_compress_pd(touching, _mm512_loadu_pd(&pair_radius_min_[k])));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(ci + nc),
-                          _mm256_maskz_compress_epi32(touching, vi));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(cj + nc),
-                          _mm256_maskz_compress_epi32(touching, vj));
-      nc += std::size_t(__builtin_popcount(touching));
-    }
-    // Pass 2: the contacts' terms, eight contacts a step (lanes past the last contact are
-    // masked off).
-    __m512d vworst = zero;
-    for (std::size_t c = 0; c < nc; c += 8)
-    {
-      const __mmask8 live = nc - c >= 8 ? __mmask8(0xff) : __mmask8((1u << (nc - c)) - 1);
-      const __m512d d2 = _mm512_maskz_loadu_pd(live, cd2 + c);
-      const __m512d dist = _mm512_sqrt_pd(d2);
-      const __m512d delta = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, csum + c), dist);
-      const __mmask8 apart = _mm512_mask_cmp_pd_mask(live, dist, zero, _CMP_GT_OQ);
-      // n = d / dist, or (1, 0, 0) for coincident centres
-      const __m512d nx = _mm512_mask_div_pd(one, apart, _mm512_maskz_loadu_pd(live, cx + c), dist);
-      const __m512d ny = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cy + c), dist);
-      const __m512d nz = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cz + c), dist);
-      _mm512_storeu_pd(cfx + c, _mm512_mul_pd(delta, nx));
-      _mm512_storeu_pd(cfy + c, _mm512_mul_pd(delta, ny));
-      _mm512_storeu_pd(cfz + c, _mm512_mul_pd(delta, nz));
-      _mm512_storeu_pd(cdelta + c, delta);
-      const __m512d ratio = _mm512_maskz_div_pd(
-          live, delta, _mm512_mul_pd(vs, _mm512_mask_loadu_pd(one, live, cmin + c)));
-      vworst = _mm512_mask_max_pd(vworst, live, vworst, ratio); // max: exact in any order
-    }
-    worst = _mm512_reduce_max_pd(vworst);
-    // Pass 3: the sums, one contact at a time in list order.
-    for (std::size_t c = 0; c < nc; ++c)
-      add(ci[c], cj[c], Vec3(cfx[c], cfy[c], cfz[c]), cdelta[c]);
-#endif
-    for (; k < pair_i_.size(); ++k)
-    {
-      const int i = pair_i_[k], j = pair_j_[k];
-      const Vec3 d = x[j] - x[i];
-      const double sum = s * pair_radius_sum_[k], d2 = d.squaredNorm();
-      if (d2 >= sum * sum)
-        continue;
-      const double dist = std::sqrt(d2), delta = sum - dist;
-      // why: coincident centres have no normal: separate them along x
-      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
-      add(i, j, Vec3(delta * n), delta);
-      worst = std::max(worst, delta / (s * pair_radius_min_[k]));
-    }
-    return {contacts ? sum_overlap / double(contacts) / (s_ * rmean_) : 0.0, worst};
+    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_);
+    return {sums.contacts ? sums.sum_overlap / double(sums.contacts) / (s_ * rmean_) : 0.0,
+            sums.worst};
   }
 
   /// One FIRE step (Bitzek et al. 2006): mix the velocity towards the force while the power
@@ -430,15 +320,11 @@ private:
   std::vector<double> R_;
   double s_, rmean_, skin_, rmax_ = 0;
   bool vector_path_ = true;
-  std::vector<Vec3> x_, xb_; // centres, centres at the last list build
-  double sb_ = 0;            // s at the last list build
-  // Verlet pair list in the cell list's order (structure of arrays for the vector path), with
-  // each pair's radius sum and smaller radius (fixed between rebuilds).
-  std::vector<int> pair_i_, pair_j_;
-  std::vector<double> pair_radius_sum_, pair_radius_min_;
+  std::vector<Vec3> x_, xb_;          // centres, centres at the last list build
+  double sb_ = 0;                     // s at the last list build
+  OverlapPairs pairs_;                // Verlet pair list, in the cell list's order
+  OverlapForces overlap_;             // the force kernel and its scratch
   std::vector<double> sorted_radius_; // radii in the cell list's slot order
-  std::vector<double> contact_;       // vector path: per-contact scratch (10 arrays)
-  std::vector<int> contact_pair_;     // vector path: the contacts' i and j
   std::vector<Vec3> v_, f_;           // FIRE velocities and forces
   // FIRE parameters (Bitzek et al. 2006) in dimensionless time (unit stiffness and mass): the
   // stiffest mode of ~12 unit springs per sphere needs dt < 2/sqrt(24) ~ 0.4.
@@ -478,38 +364,27 @@ private:
     cells.for_each_neighbour_cell(
         [&](int i, const Vec3& xi, int begin, int end)
         {
-          if (pair_i_.size() < np + std::size_t(end - begin))
-            resize_pairs(2 * (np + std::size_t(end - begin)) + 64);
+          if (pairs_.i.size() < np + std::size_t(end - begin))
+            pairs_.resize(2 * (np + std::size_t(end - begin)) + 64);
           const double Ri = R_[i];
           for (int k2 = begin; k2 < end; ++k2)
           {
             const int j = slot_particle[k2];
             const double Rj = sorted_radius_[k2], d2 = (slot_centre[k2] - xi).squaredNorm();
             const double radius_sum = Ri + Rj, lim = s * radius_sum + skin;
-            pair_i_[np] = i;
-            pair_j_[np] = j;
-            pair_radius_sum_[np] = radius_sum;
-            pair_radius_min_[np] = std::min(Ri, Rj);
+            pairs_.i[np] = i;
+            pairs_.j[np] = j;
+            pairs_.radius_sum[np] = radius_sum;
+            pairs_.radius_min[np] = std::min(Ri, Rj);
             np += (j > i) & (d2 < h2) & (d2 < lim * lim);
           }
         });
-    resize_pairs(np);
+    pairs_.resize(np);
     xb_ = x_;
     sb_ = s_;
   }
 
-  void resize_pairs(std::size_t n)
-  {
-    pair_i_.resize(n);
-    pair_j_.resize(n);
-    pair_radius_sum_.resize(n);
-    pair_radius_min_.resize(n);
-  }
-
-  void clamp(std::size_t i)
-  {
-    clamp(x_[i], v_[i], s_ * R_[i]);
-  }
+  void clamp(std::size_t i) { clamp(x_[i], v_[i], s_ * R_[i]); }
 
   /// Puts a sphere of radius a back inside the walls; the wall takes its outward velocity.
   void clamp(Vec3& x, Vec3& v, double a) const
