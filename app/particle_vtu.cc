@@ -5,6 +5,7 @@
 #include "particle_vtu_file.h"
 #include <cstdio>
 #include <fstream>
+#include <type_traits>
 
 namespace dembridge::app
 {
@@ -14,20 +15,35 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
   const std::size_t n = p.size(), nb = b.size();
+  // Points in the user's numbering (the stores are in spatial order, renumbering.h): point j is
+  // the particle with id j, so the files do not depend on the internal order.
+  std::vector<std::size_t> at(n);
+  for (std::size_t i = 0; i < n; ++i)
+    at[std::size_t(p.id[i])] = i;
   auto vectors = [&](auto field)
   {
     std::vector<double> v(3 * n);
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
     {
-      const dem::Vec3 x = field(i);
-      v[3 * i] = x.x(), v[3 * i + 1] = x.y(), v[3 * i + 2] = x.z();
+      const dem::Vec3 x = field(at[j]);
+      v[3 * j] = x.x(), v[3 * j + 1] = x.y(), v[3 * j + 2] = x.z();
     }
     return v;
   };
+  auto scalars = [&](const auto& field)
+  {
+    std::vector<std::remove_cv_t<std::remove_reference_t<decltype(field[0])>>> v(n);
+    for (std::size_t j = 0; j < n; ++j)
+      v[j] = field[at[j]];
+    return v;
+  };
+  std::vector<dem::Vec3> points(n);
+  for (std::size_t j = 0; j < n; ++j)
+    points[j] = p.position[at[j]];
   // Particles: vertices with point data
   {
-    VtuFile file(p.position, VtuFile::Cells::vertices);
-    file.point_data("radius", p.radius);
+    VtuFile file(points, VtuFile::Cells::vertices);
+    file.point_data("radius", scalars(p.radius));
     file.point_data("displacement",
                     vectors([&](std::size_t i) { return p.position[i] - p.reference_position[i]; }),
                     3);
@@ -36,20 +52,21 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
                     vectors([&](std::size_t i) { return p.angular_velocity[i]; }), 3);
     file.point_data("force", vectors([&](std::size_t i) { return p.force[i]; }), 3);
     file.point_data("moment", vectors([&](std::size_t i) { return p.torque[i]; }), 3);
-    file.point_data("group_mask", p.group_mask);
+    file.point_data("group_mask", scalars(p.group_mask));
+    const std::vector<int> coordination = scalars(p.coordination);
     file.point_data("coordination",
-                    std::vector<std::int32_t>(p.coordination.begin(), p.coordination.end()));
-    std::vector<std::int64_t> id(n);
-    for (std::size_t i = 0; i < n; ++i)
-      id[i] = std::int64_t(i);
+                    std::vector<std::int32_t>(coordination.begin(), coordination.end()));
+    std::vector<std::int64_t> id(n); // the user's numbering: point j is particle j
+    for (std::size_t j = 0; j < n; ++j)
+      id[j] = std::int64_t(j);
     file.point_data("id", id);
     // Particle stress tensors (thesis eq. 62), Pa, tension positive; row-major 3 x 3.
     const dem::ParticleStresses stress = dem::particle_stresses(p, b);
     std::vector<double> sigma(9 * n);
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          sigma[9 * i + std::size_t(3 * r + c)] = stress.sigma[i](r, c);
+          sigma[9 * j + std::size_t(3 * r + c)] = stress.sigma[at[j]](r, c);
     file.point_data("stress", sigma, 9);
     file.field_strings("group_names", group_names_);
     const std::string name = std::string("particles_") + tag + ".vtu";
@@ -58,14 +75,14 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   }
   // Bonds: line cells between the particle centres, the bond's quantities as cell data
   {
-    VtuFile file(p.position, VtuFile::Cells::lines);
+    VtuFile file(points, VtuFile::Cells::lines);
     std::vector<std::int64_t> pairs(2 * nb), id(nb);
     std::vector<double> normal(nb), shear(nb), twist(nb), bending(nb), force(3 * nb);
     std::vector<double> tensile(nb), shear_stress(nb), damage(nb);
     std::vector<std::uint8_t> state(nb);
     for (std::size_t k = 0; k < nb; ++k)
     {
-      pairs[2 * k] = b.a[k], pairs[2 * k + 1] = b.b[k], id[k] = std::int64_t(k);
+      pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
       const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
       const dem::Vec3 e = (xb - xa).normalized();
       // a broken bond carries nothing (its last recorded forces are those before the break)
@@ -98,8 +115,8 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
     file.cell_data("damage", damage);
     file.cell_data("id", id);
     std::vector<std::int64_t> particle_id(n);
-    for (std::size_t i = 0; i < n; ++i)
-      particle_id[i] = std::int64_t(i);
+    for (std::size_t j = 0; j < n; ++j)
+      particle_id[j] = std::int64_t(j);
     file.point_data("particle_id", particle_id);
     file.field_strings("group_names", group_names_);
     const std::string name = std::string("bonds_") + tag + ".vtu";

@@ -23,15 +23,16 @@ def m(x):
     return f"{x / 1e6:.1f} M"
 
 
-yade = {}
+yade, yade_cpu = {}, {}
 for threads in (1, 2):
     y = load(f"yade_hcp_r2.5mm_threads{threads}.json")
     if y:
         yade[threads] = y["bond_updates_per_second"]
+        yade_cpu[threads] = y["bond_updates_per_cpu_second"]
 
 print("| specimen | dashpots | threads | full model (best / median) | plain loop (best / median) "
-      "| full / plain | 2 threads / 1 | particle-steps/s | x YADE |")
-print("|---|---|---|---|---|---|---|---|---|")
+      "| full / plain | 2 threads / 1 | particle-steps/s | x YADE | per CPU-s: full, plain, x YADE |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for name, label in (("dem_hcp_r2.5mm.json", "HCP lattice"),
                     ("dem_random_r2.5mm.json", "random packing"),
                     ("dem_hcp_r2.5mm_no_dashpots.json", "HCP lattice"),
@@ -49,14 +50,19 @@ for name, label in (("dem_hcp_r2.5mm.json", "HCP lattice"),
         scaling = f"{rate / one:.2f}x" if one and run["threads"] > 1 else ""
         peer = (f"{rate / yade[run['threads']]:.1f}x"
                 if name == "dem_hcp_r2.5mm.json" and run["threads"] in yade else "")
+        cpu = full["bond_updates_per_cpu_second"]
+        cpu_peer = (f", {cpu / yade_cpu[run['threads']]:.1f}x"
+                    if name == "dem_hcp_r2.5mm.json" and run["threads"] in yade_cpu else "")
         print(f"| {spec} | {'on' if j['bond_damping_ratio'] > 0 else 'off'} | {run['threads']} "
               f"| {m(rate)} / {m(full['bond_updates_per_second_median'])} "
               f"| {m(plain['bond_updates_per_second'])} / "
               f"{m(plain['bond_updates_per_second_median'])} "
               f"| {run.get('ratio_full_to_plain_median', 0):.2f} | {scaling} "
-              f"| {m(full['particle_steps_per_second'])} | {peer} |")
+              f"| {m(full['particle_steps_per_second'])} | {peer} "
+              f"| {m(cpu)}, {m(plain['bond_updates_per_cpu_second'])}{cpu_peer} |")
 for threads, rate in sorted(yade.items()):
-    print(f"| YADE 2023.02a, HCP lattice | - | {threads} | {m(rate)} | | | | | |")
+    print(f"| YADE 2023.02a, HCP lattice | - | {threads} | {m(rate)} | | | | | "
+          f"| {m(yade_cpu[threads])} |")
 
 print()
 print("| specimen | bytes per particle | of which bonds | bonds per particle "

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sys/resource.h>
+#include <thread>
 #include <time.h>
 
 using namespace dembridge::dem;
@@ -107,6 +108,8 @@ int main(int argc, char** argv)
   app.add_option("--json", json_file, "Also write the result to this file");
   CLI11_PARSE(app, argc, argv);
 
+  double load_average = -1; // other work on the machine (the VM is shared)
+  std::ifstream("/proc/loadavg") >> load_average;
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   ParticleSource src;
@@ -154,6 +157,8 @@ int main(int argc, char** argv)
   j["steps_per_round"] = steps;
   j["rounds"] = rounds;
   j["packing_seconds"] = packing_seconds;
+  j["loadavg_1min_at_start"] = load_average;
+  j["hardware_threads"] = std::thread::hardware_concurrency();
   j["setup_seconds"] = setup;
   for (int threads : thread_counts)
   {
@@ -191,6 +196,8 @@ int main(int argc, char** argv)
       run["ratio_full_to_plain_best"] = run["full"]["bond_updates_per_second"].get<double>() /
                                         run["plain"]["bond_updates_per_second"].get<double>();
       run["plain_memory_bytes_per_particle"] = double(reference->memory_bytes()) / np;
+      run["plain_max_speed"] = reference->max_speed(); // finite, ~1e-3 m/s: stable
+      run["full_max_speed"] = solver.max_speed();
     }
     if (threads == thread_counts.front())
     {

@@ -1,4 +1,5 @@
 #include "plain_bond_loop.h"
+#include <algorithm>
 #include <cmath>
 #ifdef _OPENMP
 #include <omp.h>
@@ -106,6 +107,14 @@ void PlainBondLoop::step()
     F_[i].setZero();
     M_[i].setZero();
   }
+}
+
+double PlainBondLoop::max_speed() const
+{
+  double v2 = 0;
+  for (const auto& v : v_)
+    v2 = std::max(v2, v.squaredNorm());
+  return std::sqrt(v2);
 }
 
 std::size_t PlainBondLoop::memory_bytes() const

@@ -30,6 +30,8 @@ public:
   void step();
   /// Bytes the loop holds (capacity of its arrays).
   std::size_t memory_bytes() const;
+  /// Largest particle speed (m/s): the loop stays stable at the full model's time step.
+  double max_speed() const;
 
 private:
   void bond_range(std::size_t begin, std::size_t end);
