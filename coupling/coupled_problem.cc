@@ -221,6 +221,7 @@ void CoupledProblem::setup()
     dem::SolverSettings s;
     s.time_step = dt_;
     s.particle_damping = 0;
+    s.mass_damping = settings_.mass_damping; // -c m v on every particle (tie_forces)
     s.threads = dem_case_.run.threads;
     solver_ = std::make_unique<dem::ExplicitSolver>(model_.particles, model_.bonds, model_.groups,
                                                     model_.constraints, model_.loads, s);
@@ -262,11 +263,8 @@ void CoupledProblem::assemble_constraints()
     v->assign(3 * n, 0.0);
   alpha_p_ = Utilities::MPI::broadcast(comm_, alpha_p_, 0);
   fe_force_.reinit(fe_->owned_dofs(), comm_);
-  if (root_ && (settings_.mass_damping > 0 || settings_.fine_scale_damping > 0))
-  {
-    damping_force_.assign(model_.particles.size(), Vec3::Zero());
-    v_before_.assign(model_.particles.size(), Vec3::Zero());
-  }
+  if (root_ && settings_.fine_scale_damping > 0)
+    damping_force_.assign(n, Vec3::Zero());
 }
 
 // dt = safety * min(particle region's own step, FE bound (Gershgorin's or the element
@@ -365,14 +363,9 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
   }
   if (root_)
   {
+    // The mass damping -c m v^{n-1/2} acts on every particle in the DEM solver's update (its
+    // energy booked there); the trial velocities of the tied particles include it.
     const double c = settings_.mass_damping;
-    if (c > 0) // -c m v^{n-1/2} (lagged, as on the FE side)
-      for (std::size_t i = 0; i < p.size(); ++i)
-      {
-        damping_force_[i] = -c * p.mass[i] * p.velocity[i];
-        v_before_[i] = p.velocity[i];
-        p.force[i] += damping_force_[i];
-      }
     for (std::size_t k = 0; k < n; ++k)
     {
       const int i = interface_[k];
@@ -380,14 +373,10 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
       {
         const Vec3 fine =
             p.velocity[i] - Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]);
-        const Vec3 f = -settings_.fine_scale_damping * (1 - alpha_p_[k]) * p.mass[i] * fine;
-        if (c > 0)
-          damping_force_[i] += f;
-        else
-          damping_force_[i] = f, v_before_[i] = p.velocity[i];
-        p.force[i] += f;
+        damping_force_[k] = -settings_.fine_scale_damping * (1 - alpha_p_[k]) * p.mass[i] * fine;
+        p.force[i] += damping_force_[k];
       }
-      const Vec3 v_hat = p.velocity[i] + (dt / p.mass[i]) * p.force[i];
+      const Vec3 v_hat = (1 - c * dt) * p.velocity[i] + (dt / p.mass[i]) * p.force[i];
       for (int d = 0; d < 3; ++d)
       {
         v_before_p_[3 * k + d] = p.velocity[i][d];
@@ -441,14 +430,13 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
   const auto start = std::chrono::steady_clock::now();
   if (root_ && !damping_force_.empty()) // dissipated: -F_d . (v^{n-1/2} + v^{n+1/2}) / 2 dt
   {
-    const bool all = settings_.mass_damping > 0;
-    const std::size_t n = all ? p.size() : interface_.size();
     lead_damping_ = 0;
-    for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t k = 0; k < interface_.size(); ++k)
     {
-      const std::size_t i = all ? k : std::size_t(interface_[k]);
-      damping_particles_ -= damping_force_[i].dot(v_before_[i] + p.velocity[i]) * 0.5 * dt;
-      lead_damping_ -= damping_force_[i].dot(p.velocity[i]) * 0.5 * dt;
+      const Vec3& v1 = p.velocity[interface_[k]];
+      const Vec3 v0(v_before_p_[3 * k], v_before_p_[3 * k + 1], v_before_p_[3 * k + 2]);
+      damping_particles_ -= damping_force_[k].dot(v0 + v1) * 0.5 * dt;
+      lead_damping_ -= damping_force_[k].dot(v1) * 0.5 * dt;
     }
   }
   if (record) // the tie's actual displacement gap, for the record

@@ -18,9 +18,10 @@
 //   1. DEM bond forces (alpha-weighted) and loads at t_n                    [DEM solver]
 //   2. FE forces f^n = f_ext - K_(1-alpha) u^n - c M v^{n-1/2} and the
 //      trial velocities v^_I = v^{n-1/2}_I + dt M^-1 f^n                   [predict]
-//   3. optional mass damping on the particles, -c m_p v_p^{n-1/2}; fine-scale damping of band
-//      particles, -c_fs (1 - alpha) m_p (v_p - sum_I N_I v_I)^{n-1/2} (node tying only: the
-//      part of the particle motion the FE field cannot carry)
+//   3. optional mass damping on the particles, -c m_p v_p^{n-1/2} (applied and booked by the
+//      DEM solver's update, included in the tied particles' trial velocities); fine-scale
+//      damping of band particles, -c_fs (1 - alpha) m_p (v_p - sum_I N_I v_I)^{n-1/2} (node
+//      tying only: the part of the particle motion the FE field cannot carry)
 //   4. trial velocities of the interface particles v^_p = v_p^{n-1/2} + dt F_p / m_p,
 //      the tie residual rho = G v^_I - v^_p + g^n / dt and the tie forces q (multipliers.h)
 //   5. the particles receive q (their update is the DEM solver's), the FE nodes -G^T q; the FE
@@ -73,7 +74,7 @@ struct CouplingSettings
   /// 0: no growth): a long continuum needs fine cells only near the particles.
   Vec3 far_element_size = Vec3::Zero();
   double element_growth = 1.2;
-  Voigt6x6 tensor{};                        ///< the continuum's stiffness (Pa)
+  Voigt6x6 tensor{}; ///< the continuum's stiffness (Pa)
   Tying tying = Tying::particle;
   ConstraintSolve solve = ConstraintSolve::exact;
   double solve_tolerance = 1e-12;
@@ -155,10 +156,10 @@ public:
   /// reaches the band says so here (rank 0 detects, every rank holds it after a record).
   struct BandDamage
   {
-    std::size_t n_band_bonds = 0;  ///< bonds held elastic
-    double max_failure_index = 0;  ///< largest kappa over the band's bonds and the records
-    bool reached = false;          ///< kappa >= 1 somewhere in the band
-    double first_time = -1;        ///< s, when it first did
+    std::size_t n_band_bonds = 0;       ///< bonds held elastic
+    double max_failure_index = 0;       ///< largest kappa over the band's bonds and the records
+    bool reached = false;               ///< kappa >= 1 somewhere in the band
+    double first_time = -1;             ///< s, when it first did
     Vec3 first_position = Vec3::Zero(); ///< that bond's midpoint, m
   };
   const BandDamage& band_damage() const { return band_damage_; }
@@ -202,8 +203,8 @@ private:
   std::vector<double> gap_;       ///< g^n per interface particle
   std::vector<double> rho_, q_;   ///< residual and tie forces
   std::vector<double> slots_, points_, slots_force_;
-  std::vector<double> v_before_p_;                  ///< v^{n-1/2} of the interface particles
-  std::vector<dem::Vec3> damping_force_, v_before_; ///< all particles (mass damping)
+  std::vector<double> v_before_p_;       ///< v^{n-1/2} of the interface particles
+  std::vector<dem::Vec3> damping_force_; ///< fine-scale damping of the interface particles
   fem::LA::MPI::Vector fe_force_;
   std::vector<double> alpha_p_; ///< alpha at each interface particle
 

@@ -86,12 +86,25 @@ void MultiplierSolver::factorise()
             t.emplace_back(int(slot[i]), int(slot[j]), value[i] * value[j] / inv_m_[p]);
     for (std::size_t k = 0; k < n_slots; ++k) // a fixed slot: A_kk = 1, decoupled, y_k = 0
       t.emplace_back(int(k), int(k), moves(k) ? 1.0 / inv_M_[3 * k + c] : 1.0);
-    A_[c].resize(long(n_slots), long(n_slots));
-    A_[c].setFromTriplets(t.begin(), t.end());
-    factor_[c] = std::make_unique<Eigen::SimplicialLLT<Sparse>>(A_[c]);
-    if (factor_[c]->info() != Eigen::Success)
+    Sparse A{long(n_slots), long(n_slots)};
+    A.setFromTriplets(t.begin(), t.end());
+    // A few hundred slots (a band across a beam) factorise densely: the triangular solves then
+    // run at the speed of dense arithmetic; a larger band keeps the sparse factor's memory.
+    bool ok = true;
+    if (n_slots <= dense_slots)
+    {
+      dense_[c].compute(Eigen::MatrixXd(A));
+      ok = dense_[c].info() == Eigen::Success;
+    }
+    else
+    {
+      factor_[c] = std::make_unique<Eigen::SimplicialLLT<Sparse>>(A);
+      ok = factor_[c]->info() == Eigen::Success;
+    }
+    if (!ok)
       throw std::runtime_error("Coupling: the tie's constraint matrix is not positive definite");
   }
+  factorised_ = true;
   rhs_.resize(long(n_slots), shared_factor_ ? 3 : 1);
   sol_.resize(long(n_slots), shared_factor_ ? 3 : 1);
   // S q = b to round-off for a b with every component and scale (a check of the identity's use)
@@ -126,7 +139,11 @@ void MultiplierSolver::solve_factorised(const std::vector<double>& b, std::vecto
       rhs_(long(k), column) = inv_M_[3 * k + c] > 0 ? slots_[3 * k + c] : 0.0;
     if (!shared_factor_ || c == 2)
     {
-      sol_ = factor_[shared_factor_ ? 0 : c]->solve(rhs_);
+      const int f = shared_factor_ ? 0 : c;
+      if (factor_[f])
+        sol_ = factor_[f]->solve(rhs_);
+      else
+        sol_ = dense_[f].solve(rhs_);
       for (std::size_t k = 0; k < n_slots; ++k)
         for (int d = shared_factor_ ? 0 : c; d <= c; ++d)
           slots_[3 * k + d] = sol_(long(k), shared_factor_ ? d : 0);
@@ -179,7 +196,7 @@ unsigned int MultiplierSolver::solve(const std::vector<double>& rho, const doubl
     x_[i] = b_[i] / diagonal_[i]; // the lumped solve, and the start of CG
   unsigned int iterations = 0;
   residual_ = 0;
-  if (factor_[0]) // S factorised: q = S^-1 b; S q = b to round-off
+  if (factorised_) // S factorised: q = S^-1 b; S q = b to round-off
   {
     solve_factorised(b_, q);
     Sq_ = b_;

@@ -29,14 +29,15 @@
 //           approximately each step, the gap term carries the rest into the next step;
 //   exact   on one process with particle tying: S is constant (fixed G and masses); its
 //           inverse is applied through the Woodbury identity on the slots (multipliers.cc),
-//           whose small matrix is factorised once (sparse Cholesky); each step is a spread, one
-//           pair of triangular solves over the slots and an interpolation.
-//           Otherwise conjugate gradients on A, the lumped diagonal as preconditioner, to a
-//           relative residual `tolerance` (a few iterations: A is dominated by its
-//           particle-mass diagonal). On the bending beam's 600 interface particles the factorised
-//           solve takes 8 % of the run where CG to 1e-12 took 28 % (1.27x the run's speed).
+//           whose small matrix is factorised once (Cholesky, dense up to 2000 slots); each step is
+//           a spread, one pair of triangular solves over the slots and an interpolation. Otherwise
+//           conjugate gradients on A, the lumped diagonal as preconditioner, to a relative residual
+//           `tolerance` (a few iterations: A is dominated by its particle-mass diagonal). On the
+//           bending beam's 600 interface particles the factorised solve takes 8 % of the run where
+//           CG to 1e-12 took 28 % (1.27x the run's speed).
 // M^-1 is zero on fixed FE DoFs (they take no impulse). Units: q in N, v in m/s.
 #include "coupling/transfer.h"
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <array>
 #include <memory>
@@ -85,7 +86,9 @@ private:
   /// The slots' matrix A_c of the Woodbury form of S^-1 per component, factorised (one
   /// process, particle tying, exact solve; multipliers.cc).
   using Sparse = Eigen::SparseMatrix<double>;
-  std::array<Sparse, 3> A_;
+  static constexpr std::size_t dense_slots = 2000; ///< up to this many slots: a dense factor
+  bool factorised_ = false;
+  std::array<Eigen::LLT<Eigen::MatrixXd>, 3> dense_;
   std::array<std::unique_ptr<Eigen::SimplicialLLT<Sparse>>, 3> factor_;
   bool shared_factor_ = false; ///< one factor for the three components
   Eigen::MatrixXd rhs_, sol_;  ///< n_slots x 3 (shared factor) or n_slots x 1
