@@ -21,8 +21,9 @@
 
 namespace dembridge::app
 {
-/// The checkpoint format this build writes and reads (docs/checkpoint.md).
-inline constexpr int checkpoint_format_version = 1;
+/// The checkpoint format this build writes and reads (docs/checkpoint.md). Version 2: rows in
+/// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
+inline constexpr int checkpoint_format_version = 2;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
 struct CheckpointSettings
