@@ -208,6 +208,7 @@ FullFeModel full_fe_model(const CoupledCase& c, double cell_size, unsigned int d
     throw std::runtime_error("compare: the FE cell size must be positive");
   p.problem = fem::ProblemKind::static_elasticity;
   p.degree = degree;
+  p.incompatible_modes = false; // the reference's own cells: Q2 by default, static
   p.material = fem::MaterialModel::anisotropic;
   p.voigt_stiffness = continuum_tensor(c);
   for (int d = 0; d < 3; ++d)
