@@ -6,7 +6,11 @@ and the elastic FE model one after the other in the same benchmark run, one thre
 Reports wall time, peak memory, peak load and fracture energy of each and the coupled run's
 speed-up; copies comparison.json and comparison.png to bench/results/coupled_damage.{json,png}.
 
-Usage: /usr/bin/python3 bench/coupled_damage.py [--build build] [--case CASE]
+The same comparison on a beam twice as long (bench/coupled_notched_beam_4m.prm: 40,070 spheres
+against the same 2,070) with --case bench/coupled_notched_beam_4m.prm --tag 4m: the coupled run's
+advantage grows with the continuum's share of the body.
+
+Usage: /usr/bin/python3 bench/coupled_damage.py [--build build] [--case CASE] [--tag TAG]
 """
 import argparse
 import json
@@ -23,11 +27,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", default=os.path.join(root, "build"))
     ap.add_argument("--case", default=os.path.join(here, "coupled_notched_beam.prm"))
+    ap.add_argument("--tag", default="", help="suffix of the result files (e.g. 4m)")
     a = ap.parse_args()
     exe = os.path.join(a.build, "app", "dembridge")
     if not os.access(exe, os.X_OK):
         sys.exit("coupled_damage.py: %s not found (build first: bash scripts/setup.sh)" % exe)
-    out = os.path.join(a.build, "bench-output", "coupled_damage")
+    name = "coupled_damage" + ("_" + a.tag if a.tag else "")
+    out = os.path.join(a.build, "bench-output", name)
     load_before = os.getloadavg()
     subprocess.run([exe, "compare", a.case, "--output-dir", out, "--set",
                     "Output/write vtu=false"], check=True)
@@ -37,11 +43,11 @@ def main():
     c["machine_load_before"] = load_before
     c["machine_load_after"] = os.getloadavg()
     os.makedirs(os.path.join(here, "results"), exist_ok=True)
-    with open(os.path.join(here, "results", "coupled_damage.json"), "w") as f:
+    with open(os.path.join(here, "results", name + ".json"), "w") as f:
         json.dump(c, f, indent=1)
     if os.path.exists(os.path.join(out, "comparison.png")):
         shutil.copy(os.path.join(out, "comparison.png"),
-                    os.path.join(here, "results", "coupled_damage.png"))
+                    os.path.join(here, "results", name + ".png"))
     m, v = c["models"], c["coupled_vs_full_dem"]
     print("| model | particles | wall s | memory MB | peak load N | fracture energy J |")
     print("|---|---|---|---|---|---|")
