@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <deal.II/base/mpi.h>
 #include <fcntl.h>
 #include <hdf5.h>
 #include <map>
@@ -388,18 +389,30 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
   }
   else if (output_dir.empty())
     output_dir = (fs::path("output") / fs::path(case_file).stem()).string();
-  const bool dem = prm.get("Mode") == "dem";
-  if (!dem && s.resume)
-    throw InputError("--resume: only DEM runs (Mode = dem) are checkpointed");
-  if (!dem)
+  const std::string mode = prm.get("Mode");
+  const bool asked = prm.get_double({"Output"}, "checkpoint interval") > 0 ||
+                     prm.get_double({"Output"}, "checkpoint wall interval") > 0;
+  const char* key = prm.get_double({"Output"}, "checkpoint interval") > 0
+                        ? "Output/checkpoint interval"
+                        : "Output/checkpoint wall interval";
+  if (mode == "fem")
   {
-    // why: a coupled or FE run would ignore the interval and leave no checkpoint to resume
-    for (const char* key : {"checkpoint interval", "checkpoint wall interval"})
-      if (prm.get_double({"Output"}, key) > 0)
-        throw InputError(s.case_name + ": Output/" + key + ": only DEM runs (Mode = dem) are " +
-                         "checkpointed, this is a " + prm.get("Mode") + " run");
+    // why: an FE run would ignore the interval and leave no checkpoint to resume
+    if (s.resume)
+      throw InputError("--resume: only DEM and coupled runs (Mode = dem | coupled) are "
+                       "checkpointed, this is a fem run");
+    if (asked)
+      throw InputError(s.case_name + ": " + key + ": only DEM and coupled runs (Mode = dem | " +
+                       "coupled) are checkpointed, this is a fem run");
     return s;
   }
+  const unsigned ranks = mode == "coupled" && (asked || s.resume)
+                             ? dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+                             : 1;
+  if (ranks > 1)
+    throw InputError(s.case_name + ": " + (s.resume ? std::string("--resume") : key) +
+                     ": coupled runs are checkpointed on one MPI rank only (this run has " +
+                     std::to_string(ranks) + "; the continuum's works are summed per rank)");
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
   if (!s.resume)

@@ -1,16 +1,18 @@
 #pragma once
-// Checkpoint and restart of explicit DEM runs (docs/checkpoint.md).
+// Checkpoint and restart of explicit DEM runs and coupled DEM-FE runs on one MPI rank
+// (docs/checkpoint.md).
 //
 // A checkpoint is one HDF5 file, DIR/checkpoint.h5 in the run's output folder, written every
 // Output/checkpoint interval of simulated time (or checkpoint wall interval of wall time) between
 // steps: to DIR/checkpoint.h5.tmp first, flushed to the disk, then renamed over the previous one,
 // so the file is always a complete checkpoint, the newest. It holds the complete state
-// (dem/core/state_archive.h: particles, bonds, solver, contacts, the driver's sums) and the
-// output so far (history rows, snapshot lists, cracks), with a header: the format and its
-// version, the dembridge version, the step and time, and the case's effective parameters.
-// `dembridge run CASE.prm --resume DIR` rebuilds the model from the case, refuses a checkpoint
-// of another case or format version with the reason, restores the state and continues; on one
-// thread the resumed run ends with the same figures as an uninterrupted one, bit for bit.
+// (dem/core/state_archive.h: particles, bonds, solver, contacts, the driver's sums; in a coupled
+// run also the continuum's vectors and the tie's state) and the output so far (history rows,
+// snapshot lists, cracks), with a header: the format and its version, the dembridge version, the
+// step and time, and the case's effective parameters. `dembridge run CASE.prm --resume DIR`
+// rebuilds the model from the case, refuses a checkpoint of another case or format version with
+// the reason, restores the state and continues; on one thread the resumed run ends with the same
+// figures as an uninterrupted one, bit for bit.
 #include "dem/core/state_archive.h"
 #include <deal.II/base/parameter_handler.h>
 #include <filesystem>
@@ -45,7 +47,9 @@ struct CheckpointSettings
 ///    with the reason otherwise);
 ///  - a fresh run: @p output_dir defaults to output/CASE; a folder that holds the checkpoint of
 ///    an interrupted run is refused (continue it with --resume, or delete the checkpoint), so
-///    that days of computing are never lost to a forgotten option.
+///    that days of computing are never lost to a forgotten option;
+///  - refused: checkpoints or --resume in an FE run (Mode = fem), or in a coupled run on more
+///    than one MPI rank (InputError naming the key); an FE run gets no checkpoint file.
 CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
                                       const std::string& case_file, std::string& output_dir,
                                       const std::string& resume_dir);

@@ -1,16 +1,20 @@
 #include "coupled_run.h"
 #include "coupled_parameters.h"
-#include "dem/measurements/measurements.h"
-#include "dem_parameters.h"
 #include "coupling/measurements.h"
 #include "crack_output.h"
+#include "dem/measurements/measurements.h"
+#include "dem_parameters.h"
 #include "particle_vtu.h"
+#include "provenance.h"
+#include "version.h"
 
 #include <deal.II/base/mpi.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <set>
 
 namespace dembridge::app
 {
@@ -28,10 +32,10 @@ class CoupledObserver : public coupling::CoupledRunObserver
 {
 public:
   CoupledObserver(const std::filesystem::path& dir, const OutputSettings& out,
-                  CoupledProblem& problem, const std::vector<fem::PointProbe>& probes,
-                  bool root)
+                  CoupledProblem& problem, const std::vector<fem::PointProbe>& probes, bool root,
+                  const CheckpointSettings& checkpoint)
       : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir),
-        cracks_(dir, out.write_vtu)
+        cracks_(dir, out.write_vtu), checkpoint_(checkpoint)
   {
     // the load a testing machine would read: the first prescribed motion's group, the force
     // the prescription exerts on it (its reaction, ExplicitSolver::group_force) along the
@@ -70,6 +74,33 @@ public:
       for (const char* q : {"ux", "uy", "uz"})
         history_ << ",fe_probe" << k << '_' << q;
     history_ << '\n' << std::setprecision(10);
+  }
+
+  void on_start(CoupledProblem& problem, coupling::CoupledRunProgress& progress) override
+  {
+    if (!checkpoint_.resume)
+      return;
+    read_checkpoint(checkpoint_.file,
+                    [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
+    std::printf("resumed from %s: step %ld, t = %.6g s\n", checkpoint_.file.string().c_str(),
+                problem.steps(), problem.time());
+    std::fflush(stdout);
+  }
+
+  void on_checkpoint(CoupledProblem& problem, coupling::CoupledRunProgress& progress) override
+  {
+    if (checkpoint_.file.empty())
+      return;
+    CheckpointHeader h;
+    h.step = problem.steps();
+    h.time = problem.time();
+    h.version = version();
+    h.git_commit = git_commit();
+    h.written_at = utc_now();
+    h.case_name = checkpoint_.case_name;
+    h.case_text = checkpoint_.case_text;
+    write_checkpoint(checkpoint_.file, h,
+                     [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
   }
 
   void on_record(const CoupledProblem& problem) override
@@ -195,6 +226,74 @@ public:
   }
 
 private:
+  /// The complete state of the run for a checkpoint (one rank, prepare_checkpoint): the
+  /// problem's, the loop's and what this observer has gathered (history.csv so far, the load
+  /// history, the snapshot lists of both sides, the crack output).
+  void visit_state(dem::StateArchive& a, CoupledProblem& problem,
+                   coupling::CoupledRunProgress& progress)
+  {
+    problem.visit_state(a);
+    progress.visit_state(a);
+    dem::StateGroup group(a, "output");
+    a.io("load", load_);
+    a.io("load_displacement", load_displacement_);
+    if (a.loading() && load_.size() != load_displacement_.size())
+      throw dem::InputError(a.where() + "load: not as long as 'load_displacement'");
+    history_.flush();
+    std::string history;
+    const std::string part = (dir_ / "history.csv.part").string();
+    if (!a.loading())
+    {
+      std::ifstream in(part, std::ios::binary);
+      history.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    a.io("history_csv", history);
+    vtu_.visit_state(a);
+    {
+      dem::StateGroup fe(a, "fe_snapshots");
+      int cycle = int(cycle_);
+      a.io("cycle", cycle);
+      cycle_ = unsigned(cycle);
+      visit_file_list(a, "fe", fe_files_);
+    }
+    cracks_.visit_state(a, *problem.particle_solver());
+    if (!a.loading())
+      return;
+    // history.csv so far, and no snapshot of the interrupted run after the checkpoint
+    history_.close();
+    {
+      std::ofstream out(part, std::ios::binary | std::ios::trunc);
+      out << history;
+    }
+    history_.open(part, std::ios::app);
+    if (!history_)
+      throw std::runtime_error((dir_ / "history.csv").string() + ": cannot write");
+    remove_later_snapshots(problem.fe_parameters().base_name);
+  }
+
+  /// Removes the snapshot files the interrupted run wrote after its checkpoint (they are
+  /// written again): particles, bonds, cracks and the continuum's .vtu / .pvtu.
+  void remove_later_snapshots(const std::string& fe_base) const
+  {
+    std::set<std::string> listed, fe_listed;
+    for (const auto* files : {&vtu_.particle_files(), &vtu_.bond_files(), &cracks_.files()})
+      for (const auto& f : *files)
+        listed.insert(f.second);
+    for (const auto& f : fe_files_) // fem_0003.pvtu: its pieces are fem_0003.*.vtu
+      fe_listed.insert(f.second.substr(0, f.second.find('.')));
+    for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    {
+      const std::string name = entry.path().filename().string();
+      const std::string ext = entry.path().extension().string();
+      const bool dem =
+          ext == ".vtu" && (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
+                            name.rfind("cracks_", 0) == 0);
+      const bool fe = (ext == ".vtu" || ext == ".pvtu") && name.rfind(fe_base + "_", 0) == 0;
+      if ((dem && !listed.count(name)) || (fe && !fe_listed.count(name.substr(0, name.find('.')))))
+        std::filesystem::remove(entry.path());
+    }
+  }
+
   std::filesystem::path dir_;
   bool write_vtu_;
   const std::vector<fem::PointProbe>& probes_;
@@ -210,6 +309,7 @@ private:
   dealii::types::boundary_id fe_reaction_id_ = 0, fe_loaded_id_ = 0;
   dealii::Tensor<1, 3> fe_direction_;
   std::vector<double> load_, load_displacement_;
+  CheckpointSettings checkpoint_;
 };
 
 nlohmann::json energies_json(const CoupledProblem::Energies& e)
@@ -233,13 +333,20 @@ nlohmann::json energies_json(const CoupledProblem::Energies& e)
 } // namespace
 
 nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
-                                MPI_Comm comm)
+                                MPI_Comm comm, CheckpointSettings checkpoint)
 {
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   coupling::CoupledCase c = parse_coupled_case(prm);
   const OutputSettings out = parse_output_settings(prm);
   auto problem = coupling::make_coupled_problem(c, comm);
-  const coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
+  coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
+  if (!checkpoint.file.empty()) // prepare_checkpoint: one rank
+  {
+    run.checkpoint_interval = checkpoint.interval = out.checkpoint_interval;
+    run.checkpoint_wall_interval = checkpoint.wall_interval = out.checkpoint_wall_interval;
+  }
+  if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
+    run.kill_after_step = std::atol(kill);
   CoupledProblem& p = *problem;
   const auto& fe = p.continuum();
   if (root)
@@ -263,7 +370,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
       warnings.push_back(w);
     }
 
-  CoupledObserver observer(dir, out, p, probes, root);
+  CoupledObserver observer(dir, out, p, probes, root, checkpoint);
   const coupling::CoupledRunResult r = coupling::run_coupled(p, run, observer);
   observer.finish();
 
@@ -282,6 +389,10 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   j["steps"] = r.steps;
   j["simulated_time"] = r.time;
   j["stop_reason"] = r.stop_reason;
+  if (checkpoint.resume)
+    j["resumed_from"] = {{"file", checkpoint.file.string()},
+                         {"step", checkpoint.resumed_step},
+                         {"time", checkpoint.resumed_time}};
   j["solver_seconds"] = r.wall_seconds;
   j["coupling_seconds"] = r.coupling_seconds;
   j["coupling_share"] = r.wall_seconds > 0 ? r.coupling_seconds / r.wall_seconds : 0.0;

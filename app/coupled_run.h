@@ -6,7 +6,9 @@
 //                   particle groups' mean displacements, the FE probes' displacements
 //   particles_*.vtu, bonds_*.vtu, fem_*.pvtu, and coupled.pvd, which opens all three together
 //                   in ParaView (one dataset per part and time)
-// and returns the summary (SI units).
+// and returns the summary (SI units). With Output/checkpoint interval it writes checkpoints of
+// the complete coupled state, and resumes from one (checkpoint.h, docs/checkpoint.md).
+#include "checkpoint.h"
 #include <deal.II/base/parameter_handler.h>
 #include <filesystem>
 #include <mpi.h>
@@ -15,5 +17,6 @@
 namespace dembridge::app
 {
 nlohmann::json run_coupled_case(dealii::ParameterHandler& prm,
-                                const std::filesystem::path& output_dir, MPI_Comm comm);
+                                const std::filesystem::path& output_dir, MPI_Comm comm,
+                                CheckpointSettings checkpoint = {});
 }

@@ -101,7 +101,7 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     else if (mode == "coupled")
     {
 #ifdef DEMBRIDGE_HAVE_COUPLING
-      summary = dembridge::app::run_coupled_case(*prm, abs_dir, MPI_COMM_WORLD);
+      summary = dembridge::app::run_coupled_case(*prm, abs_dir, MPI_COMM_WORLD, checkpoint);
 #else
       throw std::runtime_error("Mode: this build has no coupling layer (deal.II not found)");
 #endif

@@ -77,6 +77,9 @@ public:
   {
     e.wall_work += problem_.work_q_particles_ - problem_.damping_particles_;
   }
+  /// Its state is the problem's, saved in /coupling/ (CoupledProblem::visit_state).
+  bool checkpointable() const override { return true; }
+  void visit_state(dem::StateArchive&) override {}
 
 private:
   CoupledProblem& problem_;

@@ -102,6 +102,10 @@ public:
   void assemble_constraints();
   /// One coupled step (collective). With record = true the energies are refreshed.
   void step(bool record);
+  /// Checkpoints (docs/checkpoint.md; coupled_state.cc): saves or restores the complete state
+  /// between steps: the particles' (the DEM solver's visit), the continuum's (/fe/) and the
+  /// tie's (/coupling/: gap, works and their leads, energies, band damage). One MPI rank only.
+  void visit_state(dem::StateArchive& a);
   /// FE fields of the current state; returns the .pvtu name (relative to @p dir).
   std::string output_results(const std::filesystem::path& dir, unsigned int cycle);
 

@@ -3,63 +3,103 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 
 namespace dembridge::coupling
 {
+void CoupledRunProgress::visit_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "run");
+  a.io("max_balance_error", max_balance_error);
+  a.io("max_tie_gap", max_tie_gap);
+  a.io("quiet_records", quiet_records);
+  a.io("next_checkpoint_time", next_checkpoint_time);
+}
+
 CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& s,
                              CoupledRunObserver& observer)
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  auto last_progress = start;
+  auto last_progress = start, last_checkpoint = start;
   const double dt = problem.time_step();
   // the steps to the end time, rounded so that t_end itself is reached
   const long planned =
       std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / dt - 1e-9))));
   const long record_every = std::max(1L, s.record_interval);
+
+  CoupledRunProgress progress;
+  progress.next_checkpoint_time = s.checkpoint_interval;
+  observer.on_start(problem, progress); // a resumed run restores the state here
   const double coupling_before = problem.coupling_seconds();
+  const long first = problem.steps();
 
   CoupledRunResult r;
   r.stop_reason = planned == s.max_steps ? "max steps" : "end time";
-  int quiet_records = 0;
-  for (long n = 0; n < planned; ++n)
+  for (long n = first; n < planned; ++n)
   {
     const bool last = n + 1 == planned;
     const bool snapshot =
         n == 0 || last || (s.snapshot_interval > 0 && (n + 1) % s.snapshot_interval == 0);
     const bool record = n == 0 || last || snapshot || (n + 1) % record_every == 0;
     problem.step(record);
-    if (!record)
-      continue;
-    const auto& e = problem.energies();
-    r.max_balance_error = std::max(r.max_balance_error, e.balance_error());
-    r.max_tie_gap = std::max(r.max_tie_gap, problem.max_tie_gap());
-    observer.on_record(problem);
-    bool at_rest = false;
-    if (s.rest_tolerance > 0 && problem.time() >= s.rest_after)
+    if (record)
     {
-      const double kinetic = e.dem_kinetic + e.fe_kinetic;
-      const double stored = kinetic + e.dem_strain + e.fe_strain;
-      quiet_records = stored > 0 && kinetic < s.rest_tolerance * stored ? quiet_records + 1 : 0;
-      at_rest = quiet_records >= std::max(1, s.rest_records);
+      const auto& e = problem.energies();
+      progress.max_balance_error = std::max(progress.max_balance_error, e.balance_error());
+      progress.max_tie_gap = std::max(progress.max_tie_gap, problem.max_tie_gap());
+      observer.on_record(problem);
+      bool at_rest = false;
+      if (s.rest_tolerance > 0 && problem.time() >= s.rest_after)
+      {
+        const double kinetic = e.dem_kinetic + e.fe_kinetic;
+        const double stored = kinetic + e.dem_strain + e.fe_strain;
+        int& quiet = progress.quiet_records;
+        quiet = stored > 0 && kinetic < s.rest_tolerance * stored ? quiet + 1 : 0;
+        at_rest = quiet >= std::max(1, s.rest_records);
+      }
+      if (snapshot || at_rest)
+        observer.on_snapshot(problem);
+      if (at_rest)
+      {
+        r.stop_reason = "at rest";
+        break;
+      }
+      const auto now = clock::now();
+      if (std::chrono::duration<double>(now - last_progress).count() >= s.progress_seconds)
+      {
+        last_progress = now;
+        const double elapsed = std::chrono::duration<double>(now - start).count();
+        const double rate = double(n + 1 - first) / elapsed;
+        observer.on_progress(problem, double(n + 1) / double(planned), rate,
+                             double(planned - n - 1) / rate);
+      }
     }
-    if (snapshot || at_rest)
-      observer.on_snapshot(problem);
-    if (at_rest)
-    {
-      r.stop_reason = "at rest";
+    if (last)
       break;
-    }
-    const auto now = clock::now();
-    if (std::chrono::duration<double>(now - last_progress).count() >= s.progress_seconds)
+    // Checkpoints between steps, after the step's records (as run_explicit.cc): on simulated
+    // time (reproducible steps) or on wall time.
+    bool checkpoint = false;
+    if (s.checkpoint_interval > 0 && problem.time() + 0.5 * dt >= progress.next_checkpoint_time)
     {
-      last_progress = now;
-      const double elapsed = std::chrono::duration<double>(now - start).count();
-      const double rate = double(n + 1) / elapsed;
-      observer.on_progress(problem, double(n + 1) / double(planned), rate,
-                           double(planned - n - 1) / rate);
+      checkpoint = true;
+      while (progress.next_checkpoint_time <= problem.time() + 0.5 * dt)
+        progress.next_checkpoint_time += s.checkpoint_interval;
     }
+    if (s.checkpoint_wall_interval > 0 &&
+        std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
+            s.checkpoint_wall_interval)
+      checkpoint = true;
+    if (checkpoint)
+    {
+      observer.on_checkpoint(problem, progress);
+      last_checkpoint = clock::now();
+    }
+    if (s.kill_after_step > 0 && problem.steps() == s.kill_after_step)
+      std::raise(SIGKILL);
   }
+  r.max_balance_error = progress.max_balance_error;
+  r.max_tie_gap = progress.max_tie_gap;
   r.steps = problem.steps();
   r.time = problem.time();
   r.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();

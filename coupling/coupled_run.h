@@ -31,6 +31,21 @@ struct CoupledRunSettings
   double rest_after = 0;         ///< s: the end of the last load ramp
   double progress_seconds = 2;   ///< wall time between progress reports
   int pulse_side = 0;            ///< +1: a pulse starts in the continuum, -1: in the particles
+  double checkpoint_interval = 0;      ///< simulated time between checkpoints (s); 0: none
+  double checkpoint_wall_interval = 0; ///< wall time between checkpoints (s); 0: none
+  /// Tests of checkpoint and restart: after this step the process kills itself (SIGKILL, as
+  /// `kill -9` would); 0: never.
+  long kill_after_step = 0;
+};
+
+/// What the loop carries from step to step beside the problem: the measured maxima, the rest
+/// criterion's count, the next checkpoint time. Part of a checkpoint (group /run/).
+struct CoupledRunProgress
+{
+  double max_balance_error = 0, max_tie_gap = 0;
+  int quiet_records = 0;
+  double next_checkpoint_time = 0; ///< s
+  void visit_state(dem::StateArchive& a);
 };
 
 /// The caller's hooks (output files, progress lines); every rank is called.
@@ -38,6 +53,11 @@ class CoupledRunObserver
 {
 public:
   virtual ~CoupledRunObserver() = default;
+  /// Once, before the first step: a resumed run restores the problem's and the progress' state
+  /// here (their visit_state).
+  virtual void on_start(CoupledProblem&, CoupledRunProgress&) {}
+  /// When a checkpoint is due (CoupledRunSettings), between steps, after the step's records.
+  virtual void on_checkpoint(CoupledProblem&, CoupledRunProgress&) {}
   virtual void on_record(const CoupledProblem&) {}
   virtual void on_snapshot(CoupledProblem&) {}
   virtual void on_progress(const CoupledProblem&, double /*fraction*/, double /*steps_per_s*/,

@@ -1,5 +1,6 @@
 // dembridge::fem — explicit elastodynamics (lumped mass, central differences).
 #include "explicit_dynamics.h"
+#include "dem/core/state_archive.h"
 #include "fem/local_array.h"
 
 #include <deal.II/base/function_parser.h>
@@ -325,6 +326,69 @@ void ExplicitDynamics::update(const double dt, const bool record)
   solution = u_owned;
   current_time += dt;
   ++step_number;
+}
+
+// Checkpoint state (docs/checkpoint.md, /fe/). Between steps a step reads u_n (u_owned, and
+// `solution`, its ghosted copy), v_{n-1/2}, the applied forces, the time (driven boundaries are
+// ramps of it), the step count (the half-step start) and the works summed so far; the trial
+// velocity, step, internal and outside forces are overwritten by predict() before they are read.
+// The energies are those of the last record (read by the caller between records).
+void ExplicitDynamics::visit_state(dem::StateArchive& a)
+{
+  // why: the works are summed per rank and the vectors stored in one rank's order
+  if (Utilities::MPI::n_mpi_processes(mpi_communicator) != 1)
+    throw std::runtime_error("checkpoints: the continuum's state is checkpointed on one MPI "
+                             "rank only");
+  dem::StateGroup group(a, "fe");
+  const std::size_t n = locally_owned_dofs.n_elements(); // one rank: global DoF order
+  for (auto [name, vector] :
+       {std::pair{"displacement", &u_owned}, std::pair{"velocity", &velocity_half},
+        std::pair{"applied_force", &applied_force}})
+  {
+    LocalArray local(*vector);
+    std::vector<double> values(local.data(), local.data() + n);
+    a.io_sized(name, values);
+    if (a.loading())
+      std::copy(values.begin(), values.end(), local.data());
+  }
+  if (a.loading())
+    solution = u_owned;
+  a.io("time", current_time);
+  long steps = step_number;
+  a.io("steps", steps);
+  step_number = static_cast<unsigned int>(steps);
+  a.io("boundary_work_summed", boundary_work_summed);
+  a.io("damping_summed", damping_summed);
+  a.io("outside_work_summed", outside_work_summed);
+  {
+    dem::StateGroup energies(a, "energy");
+    a.io("kinetic_shadow", energy.kinetic_shadow);
+    a.io("kinetic", energy.kinetic);
+    a.io("strain", energy.strain);
+    a.io("load_potential", energy.load_potential);
+    a.io("damping", energy.damping);
+    a.io("outside_work", energy.outside_work);
+    a.io("boundary_work", energy.boundary_work);
+  }
+  // the .pvd's records so far (each output rewrites the .pvd with all of them)
+  std::vector<double> times;
+  std::string names;
+  for (const auto& [t, f] : pvtu_records)
+    times.push_back(t), names += f + "\n";
+  a.io("pvtu_times", times);
+  a.io("pvtu_files", names);
+  if (!a.loading())
+    return;
+  pvtu_records.clear();
+  std::size_t at = 0;
+  for (const double t : times)
+  {
+    const std::size_t end = names.find('\n', at);
+    if (end == std::string::npos)
+      throw dem::InputError(a.where() + "pvtu_files: fewer names than times");
+    pvtu_records.emplace_back(t, names.substr(at, end - at));
+    at = end + 1;
+  }
 }
 
 void ExplicitDynamics::step(const double dt)

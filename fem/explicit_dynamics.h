@@ -39,6 +39,11 @@
 
 #include <functional>
 
+namespace dembridge::dem
+{
+class StateArchive; // dem/core/state_archive.h
+}
+
 namespace dembridge::fem
 {
 class ExplicitDynamics : public ElasticProblem
@@ -133,6 +138,12 @@ public:
     double total() const { return kinetic + strain + load_potential; }
   };
   const Energies& energies() const { return energy; }
+
+  /// Checkpoints (docs/checkpoint.md, group /fe/): saves or restores what a step reads from the
+  /// previous ones: u_n, v_{n-1/2}, the applied forces, time and step count, the works summed
+  /// so far, the last energies and the .pvd records. One MPI rank only (the works are summed per
+  /// rank); vectors in global DoF order, checked against this mesh's DoF count on restore.
+  void visit_state(dem::StateArchive& a);
 
   /// Writes displacement, strain, stress (.vtu per rank, .pvtu, FEM/Output/base name .pvd);
   /// returns the .pvtu file name (relative to @p output_dir).
