@@ -78,6 +78,11 @@ public:
 
   void on_start(CoupledProblem& problem, coupling::CoupledRunProgress& progress) override
   {
+    // refused before the first step, not at the first checkpoint
+    if ((checkpoint_.enabled() || checkpoint_.resume) &&
+        !problem.particle_solver()->checkpointable())
+      throw dem::InputError("Output/checkpoint interval: this run has forces on the particles "
+                            "that cannot be checkpointed yet");
     if (!checkpoint_.resume)
       return;
     read_checkpoint(checkpoint_.file,
