@@ -3,7 +3,8 @@
 sea-ice beam (bench/coupled_notched_beam.prm: particles in the middle 0.2 m, r = 5 mm,
 softening bonds) runs the coupled beam, the full-DEM beam of the same packing (20,200 spheres)
 and the elastic FE model one after the other in the same benchmark run, one thread each.
-Reports wall time, peak memory, peak load and fracture energy of each and the coupled run's
+Reports wall time, peak memory, peak load, limit load (the peak before an unstable crack's snap:
+app/compare.cc) and fracture energy of each and the coupled run's
 speed-up; copies comparison.json and comparison.png to bench/results/coupled_damage.{json,png}.
 
 The same comparison on a beam twice as long (bench/coupled_notched_beam_4m.prm: 40,070 spheres
@@ -49,16 +50,17 @@ def main():
         shutil.copy(os.path.join(out, "comparison.png"),
                     os.path.join(here, "results", name + ".png"))
     m, v = c["models"], c["coupled_vs_full_dem"]
-    print("| model | particles | wall s | memory MB | peak load N | fracture energy J |")
-    print("|---|---|---|---|---|---|")
+    print("| model | particles | wall s | memory MB | peak load N | limit load N | fracture energy J |")
+    print("|---|---|---|---|---|---|---|")
     for name in ("coupled", "full_dem", "full_fem"):
         r = m[name]
-        print("| %s | %s | %.1f | %.0f | %s | %s |" % (
+        print("| %s | %s | %.1f | %.0f | %s | %s | %s |" % (
             name, r.get("n_particles", "-"), r["wall_seconds"], r["peak_memory_bytes"] / 1e6,
-            "%.1f" % r["peak_load"] if "peak_load" in r else "-",
+            "%.2f" % r["peak_load"] if "peak_load" in r else "-",
+            "%.2f" % r["limit_load"] if "limit_load" in r else "-",
             "%.4g" % r["fracture_energy"] if "fracture_energy" in r else "-"))
-    print("coupled / full DEM: speed-up %.2f, peak load %.4f, fracture energy %.4f" % (
-        v["speedup"], v["peak_load_ratio"], v["fracture_energy_ratio"]))
+    print("coupled / full DEM: speed-up %.2f, peak load %.4f, limit load %.4f, fracture energy %.4f"
+          % (v["speedup"], v["peak_load_ratio"], v["limit_load_ratio"], v["fracture_energy_ratio"]))
 
 
 if __name__ == "__main__":
