@@ -1,8 +1,10 @@
 // dembridge compare: coupled against full DEM and full FE (see compare.h).
 #include "compare.h"
 #include "case_file.h"
+#include "compare_plot.h"
 #include "coupled_parameters.h"
 #include "coupling/full_models.h"
+#include "dem/measurements/failure_measurements.h"
 #include "dem_parameters.h"
 #include "fem/fem_case.h"
 #include "memory_guard.h"
@@ -244,38 +246,24 @@ struct Curve
   std::vector<double> deflection, load;
 };
 
-/// Peak |load|, the deflection there, and the initial stiffness: least squares through the
-/// origin over the records below half the peak, before the first broken bond. The limit load is
-/// the largest |load| before it first falls below half of its running maximum: where a crack
-/// runs unstably (a long beam stores more elastic energy than the ligament dissipates, so under
-/// displacement control it snaps) the explicit run rings afterwards and the overall peak is an
-/// inertial spike; the limit load is the peak a quasi-static test measures. Without a snap the
-/// two are the same record.
+/// Peak |load| and the limit load (dem/measurements/failure_measurements.h), the deflections
+/// there, and the initial stiffness: least squares through the origin over the records below
+/// half the peak, before the first broken bond.
 json curve_figures(const Curve& c, const std::vector<double>& broken)
 {
   json j;
-  std::size_t peak = 0;
-  for (std::size_t k = 0; k < c.load.size(); ++k)
-    if (std::abs(c.load[k]) > std::abs(c.load[peak]))
-      peak = k;
   if (c.load.empty())
     return j;
-  j["peak_load"] = std::abs(c.load[peak]);
-  j["deflection_at_peak"] = std::abs(c.deflection[peak]);
-  std::size_t limit = 0;
-  for (std::size_t k = 0; k < c.load.size(); ++k)
-  {
-    if (std::abs(c.load[k]) < 0.5 * std::abs(c.load[limit]))
-      break;
-    if (std::abs(c.load[k]) > std::abs(c.load[limit]))
-      limit = k;
-  }
-  j["limit_load"] = std::abs(c.load[limit]);
-  j["deflection_at_limit"] = std::abs(c.deflection[limit]);
+  const dem::PeakLoad peak = dem::peak_of(c.load, c.deflection);
+  const dem::PeakLoad limit = dem::limit_of(c.load, c.deflection);
+  j["peak_load"] = std::abs(peak.load);
+  j["deflection_at_peak"] = std::abs(peak.displacement);
+  j["limit_load"] = std::abs(limit.load);
+  j["deflection_at_limit"] = std::abs(limit.displacement);
   double sxy = 0, sxx = 0;
   for (std::size_t k = 0; k < c.load.size(); ++k)
   {
-    if (std::abs(c.load[k]) > 0.5 * std::abs(c.load[peak]) || (k < broken.size() && broken[k] > 0))
+    if (std::abs(c.load[k]) > 0.5 * std::abs(peak.load) || (k < broken.size() && broken[k] > 0))
       break;
     sxy += c.deflection[k] * c.load[k];
     sxx += c.deflection[k] * c.deflection[k];
@@ -306,59 +294,6 @@ json to_json(const Vec3& v)
   return {v.x(), v.y(), v.z()};
 }
 
-const char* plot_script = R"PY(
-import csv, sys
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-comparison_csv, png, title, coupled_cracks, dem_cracks, axis_h, axis_v, v_lo, v_hi = sys.argv[1:10]
-h, v = int(axis_h), int(axis_v)
-v_lo, v_hi = float(v_lo), float(v_hi)
-curves = {}
-with open(comparison_csv) as f:
-    for row in csv.DictReader(f):
-        curves.setdefault(row["model"], ([], []))
-        curves[row["model"]][0].append(1e3 * float(row["deflection"]))
-        curves[row["model"]][1].append(float(row["load"]))
-
-def cracks(path):
-    xs, ys, modes = [], [], []
-    try:
-        with open(path) as f:
-            for row in csv.DictReader(f):
-                p = [float(row["x"]), float(row["y"]), float(row["z"])]
-                xs.append(p[h]); ys.append(p[v]); modes.append(row["mode"])
-    except FileNotFoundError:
-        pass
-    return xs, ys, modes
-
-fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-style = {"coupled": "C0-", "full_dem": "C1--", "full_fem": "k:"}
-for name, (d, F) in curves.items():
-    axes[0].plot(d, F, style.get(name, "-"), label=name.replace("_", " "))
-axes[0].set_xlabel("deflection (mm)"); axes[0].set_ylabel("load (N)")
-axes[0].legend(); axes[0].grid(alpha=0.3)
-sets = [cracks(coupled_cracks), cracks(dem_cracks)]
-every_x = sets[0][0] + sets[1][0]
-for ax, (xs, ys, modes), name in ((axes[1], sets[0], "coupled"), (axes[2], sets[1], "full DEM")):
-    for mode, colour in (("tension", "C3"), ("shear", "C2")):
-        sel = [k for k, m in enumerate(modes) if m == mode]
-        ax.scatter([xs[k] for k in sel], [ys[k] for k in sel], s=6, c=colour, label=mode)
-    ax.set_title(f"{name}: {len(xs)} broken bonds")
-    ax.set_xlabel("xyz"[h] + " (m)"); ax.set_ylabel("xyz"[v] + " (m)")
-    # the same window in both: the whole depth, the span of every crack point
-    if every_x:
-        pad = 0.5 * (v_hi - v_lo)
-        ax.set_xlim(min(every_x) - pad, max(every_x) + pad)
-    ax.set_ylim(v_lo, v_hi)
-    ax.set_aspect("equal"); ax.grid(alpha=0.3)
-    if xs:
-        ax.legend(loc="upper right")
-fig.suptitle(title)
-fig.tight_layout()
-fig.savefig(png, dpi=110)
-)PY";
 } // namespace
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& o)
@@ -597,7 +532,7 @@ int run_compare(const CompareOptions& o)
     const fs::path png = dir / "comparison.part.png";
     {
       std::ofstream out(script);
-      out << "# Written by `dembridge compare`\n" << plot_script;
+      out << "# Written by `dembridge compare`\n" << compare_plot_script;
     }
     const std::string command =
         shell_quote(python()) + " " + shell_quote(script.string()) + " " +

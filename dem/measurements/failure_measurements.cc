@@ -51,6 +51,21 @@ PeakLoad peak_of(const std::vector<double>& load, const std::vector<double>& dis
   return peak;
 }
 
+PeakLoad limit_of(const std::vector<double>& load, const std::vector<double>& displacement)
+{
+  if (load.size() != displacement.size())
+    throw std::invalid_argument("limit_of: load and displacement histories differ in length");
+  PeakLoad limit;
+  for (std::size_t i = 0; i < load.size(); ++i)
+  {
+    if (limit.index >= 0 && std::abs(load[i]) < 0.5 * std::abs(limit.load))
+      break;
+    if (limit.index < 0 || std::abs(load[i]) > std::abs(limit.load))
+      limit = {load[i], displacement[i], long(i)};
+  }
+  return limit;
+}
+
 std::size_t records_before(const std::vector<double>& load, double fraction)
 {
   double peak = 0;

@@ -6,7 +6,8 @@
 //    two adjacent slabs hold (1 when every broken bond lies in one band two slabs wide);
 //  - peak_of: the peak of a load history (largest |load|) and the displacement it came at; the
 //    uniaxial tests turn it into peak_stress = F / A and strain_at_peak = du / L (thesis eq. 64's
-//    force and gauge length), three-point bending reports the peak load itself.
+//    force and gauge length), three-point bending reports the peak load itself;
+//  - limit_of: the peak before an unstable crack's load drop (dynamic ringing excluded).
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include <vector>
@@ -37,6 +38,13 @@ struct PeakLoad
 
 /// The record of the largest |load| (the first one if it repeats); histories of equal length.
 PeakLoad peak_of(const std::vector<double>& load, const std::vector<double>& displacement);
+
+/// The limit point: the largest |load| before |load| first falls below half of its running
+/// maximum. Where a crack runs unstably (a structure that stores more elastic energy at its peak
+/// than the ligament dissipates snaps under displacement control) an explicit run rings
+/// afterwards and the overall peak is an inertial spike; the limit point is the peak a
+/// quasi-static test measures. Without such a drop it is peak_of's record.
+PeakLoad limit_of(const std::vector<double>& load, const std::vector<double>& displacement);
 
 /// Number of leading records before |load| first reaches `fraction` of its peak: the elastic
 /// part of the curve of a specimen that breaks (E is fitted there).
