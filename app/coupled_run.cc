@@ -126,16 +126,15 @@ public:
       return;
     const auto& e = problem.energies();
     history_ << problem.steps() << ',' << problem.time() << ',' << e.dem_kinetic << ','
-             << e.dem_strain << ',' << e.dem_damping << ',' << e.dem_external << ','
-             << e.dem_other << ',' << e.fe_kinetic << ',' << e.fe_strain << ',' << e.fe_damping
-             << ',' << e.fe_boundary_work << ',' << e.multiplier_work_particles << ','
+             << e.dem_strain << ',' << e.dem_damping << ',' << e.dem_external << ',' << e.dem_other
+             << ',' << e.fe_kinetic << ',' << e.fe_strain << ',' << e.fe_damping << ','
+             << e.fe_boundary_work << ',' << e.multiplier_work_particles << ','
              << e.multiplier_work_fe << ',' << e.balance_error() << ',' << problem.max_tie_gap()
              << ',' << problem.particle_solver()->n_broken_bonds() << ','
              << problem.band_damage().max_failure_index;
     {
       const auto* s = problem.particle_solver();
-      const double load =
-          load_group_ >= 0 ? s->group_force(load_group_).dot(load_direction_) : 0.0;
+      const double load = load_group_ >= 0 ? s->group_force(load_group_).dot(load_direction_) : 0.0;
       const double u =
           load_group_ >= 0 ? s->group_mean_displacement(load_group_).dot(load_direction_) : 0.0;
       if (fe_load_)
@@ -172,8 +171,7 @@ public:
     cracks_.snapshot(problem.time(), problem.steps());
   }
 
-  void on_progress(const CoupledProblem& problem, double fraction, double rate,
-                   double eta) override
+  void on_progress(const CoupledProblem& problem, double fraction, double rate, double eta) override
   {
     if (!root_)
       return;
@@ -181,8 +179,7 @@ public:
                 "%.2e, coupling %.0f %% of the time\n",
                 100 * fraction, problem.steps(), problem.time(), rate, eta,
                 problem.energies().balance_error(),
-                100 * problem.coupling_seconds() /
-                    std::max(1e-12, double(problem.steps()) / rate));
+                100 * problem.coupling_seconds() / std::max(1e-12, double(problem.steps()) / rate));
     std::fflush(stdout);
   }
 
@@ -490,8 +487,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     const auto& m = c.particles.measure;
     if (!m.deflection_group.empty())
     {
-      const auto& g = model.groups[model.group_index(m.deflection_group,
-                                                     "Measurements/deflection group")];
+      const auto& g =
+          model.groups[model.group_index(m.deflection_group, "Measurements/deflection group")];
       const dem::Vec3 u = dem::mean_displacement(model.particles, g);
       measured[m.deflection_name] = u.dot(m.deflection_direction.normalized());
       measured[m.deflection_name + "_vector"] = to_json(u);
@@ -501,20 +498,19 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     const auto& h = p.handshake();
     const auto eps = coupling::fit_particle_strain(model.particles, [&](const dem::Vec3& X)
                                                    { return h.in_particle_only(X); });
-    measured["particle_strain"] = {{eps[0], eps[1], eps[2]},
-                                   {eps[3], eps[4], eps[5]},
-                                   {eps[6], eps[7], eps[8]}};
+    measured["particle_strain"] = {
+        {eps[0], eps[1], eps[2]}, {eps[3], eps[4], eps[5]}, {eps[6], eps[7], eps[8]}};
     measured["n_bonds"] = model.bonds.size();
     // cracks (the particle region's): counts by mode, broken fraction per slab
-    add_crack_summary(measured, observer.cracks(), model.particles, model.bonds,
-                      m.stress_layers, m.stress_layer_axis);
+    add_crack_summary(measured, observer.cracks(), model.particles, model.bonds, m.stress_layers,
+                      m.stress_layer_axis);
     if (!observer.cracks().empty())
     {
       const auto& first = observer.cracks().front();
-      measured["first_crack"] = {{"time", first.time},
-                                 {"position", to_json(first.midpoint)},
-                                 {"mode", first.mode == dem::CrackMode::tension ? "tension"
-                                                                                : "shear"}};
+      measured["first_crack"] = {
+          {"time", first.time},
+          {"position", to_json(first.midpoint)},
+          {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
     }
     if (!observer.loads().empty()) // peak_load (N), deflection_at_peak (m)
       add_peak_load(measured, observer.loads(), observer.load_displacements());

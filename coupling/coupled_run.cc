@@ -24,8 +24,7 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   auto last_progress = start, last_checkpoint = start;
   const double dt = problem.time_step();
   // the steps to the end time, rounded so that t_end itself is reached
-  const long planned =
-      std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / dt - 1e-9))));
+  const long planned = std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / dt - 1e-9))));
   const long record_every = std::max(1L, s.record_interval);
 
   CoupledRunProgress progress;

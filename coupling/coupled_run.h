@@ -22,16 +22,16 @@ namespace dembridge::coupling
 {
 struct CoupledRunSettings
 {
-  double end_time = 0;           ///< s
-  long max_steps = 100000000;    ///< a cap on the steps
-  long record_interval = 100;    ///< steps between records
-  long snapshot_interval = 0;    ///< steps between snapshots; 0: first and last only
-  double rest_tolerance = 0;     ///< kinetic share; 0: run to the end time
-  int rest_records = 5;          ///< consecutive records below the tolerance
-  double rest_after = 0;         ///< s: the end of the last load ramp
-  double progress_seconds = 2;   ///< wall time between progress reports
-  int pulse_side = 0;            ///< +1: a pulse starts in the continuum, -1: in the particles
-  double checkpoint_interval = 0;      ///< simulated time between checkpoints (s); 0: none
+  double end_time = 0;            ///< s
+  long max_steps = 100000000;     ///< a cap on the steps
+  long record_interval = 100;     ///< steps between records
+  long snapshot_interval = 0;     ///< steps between snapshots; 0: first and last only
+  double rest_tolerance = 0;      ///< kinetic share; 0: run to the end time
+  int rest_records = 5;           ///< consecutive records below the tolerance
+  double rest_after = 0;          ///< s: the end of the last load ramp
+  double progress_seconds = 2;    ///< wall time between progress reports
+  int pulse_side = 0;             ///< +1: a pulse starts in the continuum, -1: in the particles
+  double checkpoint_interval = 0; ///< simulated time between checkpoints (s); 0: none
   double checkpoint_wall_interval = 0; ///< wall time between checkpoints (s); 0: none
   /// Tests of checkpoint and restart: after this step the process kills itself (SIGKILL, as
   /// `kill -9` would); 0: never.

@@ -50,11 +50,8 @@ BoundaryNames read_physical_names(std::istream& in, const std::string& file)
   return names;
 }
 
-/// Every $Section of a .msh file closed by its $EndSection before the next one opens: deal.II's
-/// reader loops forever on some files that break this (fuzz/findings/).
-void check_msh_sections(const std::string& file)
+void check_msh_sections(std::istream& in, const std::string& file)
 {
-  std::ifstream in(file);
   std::string line, open;
   long open_line = 0;
   for (long n = 1; std::getline(in, line); ++n)
@@ -297,7 +294,10 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
   else
   {
     const std::string file = resolve_mesh_file(p.mesh_file);
-    check_msh_sections(file);
+    {
+      std::ifstream sections(file);
+      check_msh_sections(sections, file);
+    }
     names = read_physical_names(file);
     std::ifstream in(file);
     dealii::GridIn<3> grid_in;

@@ -1,5 +1,5 @@
-// libFuzzer target: the gmsh mesh reader on any bytes: our $PhysicalNames reader
-// (fem/mesh.h) and deal.II's GridIn::read_msh, as fem/mesh.cc uses them, into a serial
+// libFuzzer target: the gmsh mesh reader on any bytes: our section check and $PhysicalNames
+// reader (fem/mesh.h) and deal.II's GridIn::read_msh, as fem/mesh.cc uses them, into a serial
 // triangulation. Input errors (std::runtime_error, deal.II's ExceptionBase) are expected;
 // crashes, sanitizer reports, other exceptions, hangs and memory beyond libFuzzer's limit are
 // findings (deal.II itself is not instrumented: its own memory errors show only as crashes).
@@ -22,6 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try
   {
+    std::istringstream sections_in(text); // as fem/mesh.cc: refused before deal.II reads it
+    dembridge::fem::check_msh_sections(sections_in, "fuzz.msh");
     std::istringstream names_in(text);
     dembridge::fem::read_physical_names(names_in, "fuzz.msh");
     std::istringstream mesh_in(text);
