@@ -40,8 +40,9 @@ BoundaryNames read_physical_names(const std::string& file);
 BoundaryNames read_physical_names(std::istream& in, const std::string& file);
 
 /// Checks that every $Section of a .msh text is closed by its $EndSection before the next one
-/// opens (deal.II's reader loops forever on some files that break this: fuzz/findings/); throws
-/// std::runtime_error naming FEM/Mesh/file, @p file and the lines otherwise.
+/// opens (deal.II's reader loops forever on some files that break this: fuzz/findings/) and
+/// that the format version is 2.2 or 4.1; throws std::runtime_error naming FEM/Mesh/file,
+/// @p file and the line otherwise.
 void check_msh_sections(std::istream& in, const std::string& file);
 
 } // namespace dembridge::fem
