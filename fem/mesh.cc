@@ -50,10 +50,27 @@ BoundaryNames read_physical_names(std::istream& in, const std::string& file)
   return names;
 }
 
+namespace
+{
+/// Nodes of a gmsh 2.2 element type (gmsh reference manual, "MSH file format version 2");
+/// 0: a type this reader does not know.
+int msh22_nodes_of_type(long type)
+{
+  static const int nodes[] = {0, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1, 8, 20};
+  return type > 0 && type < long(std::size(nodes)) ? nodes[type] : 0;
+}
+} // namespace
+
 void check_msh_sections(std::istream& in, const std::string& file)
 {
-  std::string line, open;
-  long open_line = 0;
+  std::string line, open, version;
+  long open_line = 0, declared = 0, listed = 0;
+  std::set<long> nodes;
+  const auto fail = [&](long n, const std::string& what)
+  {
+    throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) + ": " +
+                             what);
+  };
   for (long n = 1; std::getline(in, line); ++n)
   {
     if (!line.empty() && line.back() == '\r')
@@ -62,27 +79,64 @@ void check_msh_sections(std::istream& in, const std::string& file)
     {
       // why: deal.II 9.4 reads other version numbers with the wrong layout and writes out of
       // bounds on some (fuzz/findings/mesh_deal_ii_*.msh)
-      const std::string version = line.substr(0, line.find(' '));
+      version = line.substr(0, line.find(' '));
       if (version != "2.2" && version != "4.1")
-        throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) +
-                                 ": gmsh format version '" + version +
-                                 "' is not read (2.2 or 4.1: gmsh -format msh22 or msh41)");
+        fail(n, "gmsh format version '" + version +
+                    "' is not read (2.2 or 4.1: gmsh -format msh22 or msh41)");
     }
+    // Version 2.2 nodes and elements: counts, fields and node numbers checked, since deal.II
+    // 9.4 reads an element's node numbers unchecked (a number beyond the nodes crashed it).
+    if (version == "2.2" && (open == "$Nodes" || open == "$Elements") && !line.empty() &&
+        line[0] != '$')
+    {
+      std::istringstream fields(line);
+      std::vector<long> v;
+      for (long x; fields >> x;)
+        v.push_back(x);
+      if (n == open_line + 1)
+      {
+        if (v.size() != 1 || v[0] < 0)
+          fail(n, open + " must begin with its number of entries");
+        declared = v[0], listed = 0;
+        continue;
+      }
+      ++listed;
+      if (open == "$Nodes")
+      {
+        if (v.empty())
+          fail(n, "a node line must begin with the node's number");
+        nodes.insert(v[0]);
+      }
+      else
+      {
+        const int count = v.size() >= 3 ? msh22_nodes_of_type(v[1]) : 0;
+        if (count == 0 || v[2] < 0 || long(v.size()) != 3 + v[2] + count)
+          fail(n, "element line with a wrong number of fields for its type and tags");
+        for (std::size_t k = 3 + v[2]; k < v.size(); ++k)
+          if (!nodes.count(v[k]))
+            fail(n, "element " + std::to_string(v[0]) + " refers to node " + std::to_string(v[k]) +
+                        ", which $Nodes does not define");
+      }
+    }
+    if (version == "2.2" && (open == "$Nodes" || open == "$Elements") &&
+        line == "$End" + open.substr(1) && listed != declared)
+      fail(n, open + " declares " + std::to_string(declared) + " entries and lists " +
+                  std::to_string(listed));
     if (line.empty() || line[0] != '$')
       continue;
     if (line.rfind("$End", 0) == 0)
     {
       if (open.empty() || line != "$End" + open.substr(1))
-        throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) +
-                                 ": '" + line + "' closes no open section" +
+        throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) + ": '" +
+                                 line + "' closes no open section" +
                                  (open.empty() ? "" : " (" + open + " is open)"));
       open.clear();
     }
     else if (!open.empty())
       throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
                                std::to_string(open_line) + ") is not closed by $End" +
-                               open.substr(1) + " before " + line + " (line " +
-                               std::to_string(n) + ")");
+                               open.substr(1) + " before " + line + " (line " + std::to_string(n) +
+                               ")");
     else
       open = line, open_line = n;
   }
@@ -135,8 +189,8 @@ void check_refined_mesh_fits(const Parameters& p, double coarse_cells)
   std::ostringstream text;
   text.precision(3);
   text << "FEM/Mesh/refinements: " << p.refinements << " refinements of the " << coarse_cells
-       << " coarse cells make " << cells << " cells and about " << dofs << " DoFs (Q"
-       << p.degree << "), needing about " << human_bytes(dofs * bytes_per_dof)
+       << " coarse cells make " << cells << " cells and about " << dofs << " DoFs (Q" << p.degree
+       << "), needing about " << human_bytes(dofs * bytes_per_dof)
        << " of memory; this machine has " << human_bytes(available) << " available";
   throw std::runtime_error(text.str());
 }
@@ -297,8 +351,8 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
     else
     {
       const std::vector<unsigned int> repetitions(p.subdivisions.begin(), p.subdivisions.end());
-      dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, p.box_lower,
-                                                        p.box_upper, /*colorize=*/true);
+      dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, p.box_lower, p.box_upper,
+                                                        /*colorize=*/true);
     }
   }
   else
