@@ -561,4 +561,16 @@ void visit_file_list(dem::StateArchive& a, const std::string& name,
     files.emplace_back(t, f);
   }
 }
+CheckpointHeader make_checkpoint_header(const CheckpointSettings& settings, long step, double time)
+{
+  CheckpointHeader h;
+  h.step = step;
+  h.time = time;
+  h.version = version();
+  h.git_commit = git_commit();
+  h.written_at = utc_now();
+  h.case_name = settings.case_name;
+  h.case_text = settings.case_text;
+  return h;
+}
 } // namespace dembridge::app

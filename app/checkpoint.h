@@ -70,6 +70,10 @@ struct CheckpointHeader
   std::string version, git_commit, written_at, case_name, case_text;
 };
 
+/// The header of a checkpoint this build writes now at @p step and @p time of the run that
+/// @p settings describe (version, commit, UTC time, case name and text).
+CheckpointHeader make_checkpoint_header(const CheckpointSettings& settings, long step, double time);
+
 /// Reads a checkpoint's header; InputError naming the file when it is no HDF5 file, no
 /// dembridge checkpoint or of another format version.
 CheckpointHeader read_checkpoint_header(const std::filesystem::path& file);

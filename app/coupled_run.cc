@@ -96,15 +96,8 @@ public:
   {
     if (checkpoint_.file.empty())
       return;
-    CheckpointHeader h;
-    h.step = problem.steps();
-    h.time = problem.time();
-    h.version = version();
-    h.git_commit = git_commit();
-    h.written_at = utc_now();
-    h.case_name = checkpoint_.case_name;
-    h.case_text = checkpoint_.case_text;
-    write_checkpoint(checkpoint_.file, h,
+    write_checkpoint(checkpoint_.file,
+                     make_checkpoint_header(checkpoint_, problem.steps(), problem.time()),
                      [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
   }
 

@@ -166,15 +166,8 @@ public:
     // one writer: a DEM run started on several MPI ranks runs the same model on each
     if (checkpoint_.file.empty() || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
       return;
-    CheckpointHeader h;
-    h.step = s.steps();
-    h.time = s.time();
-    h.version = version();
-    h.git_commit = git_commit();
-    h.written_at = utc_now();
-    h.case_name = checkpoint_.case_name;
-    h.case_text = checkpoint_.case_text;
-    write_checkpoint(checkpoint_.file, h,
+    write_checkpoint(checkpoint_.file,
+                     make_checkpoint_header(checkpoint_, s.steps(), s.time()),
                      [&](dem::StateArchive& a) { visit_state(a, s, progress); });
   }
 
