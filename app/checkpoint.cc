@@ -241,11 +241,14 @@ private:
   std::vector<std::string> path_;
 };
 
-void visit_header(dem::StateArchive& a, CheckpointHeader& h)
+/// @p with_ranks: mpi_ranks is there (files before it had one-rank runs only)
+void visit_header(dem::StateArchive& a, CheckpointHeader& h, bool with_ranks)
 {
   dem::StateGroup group(a, "header");
   a.io("step", h.step);
   a.io("time", h.time);
+  if (with_ranks)
+    a.io("mpi_ranks", h.mpi_ranks);
   a.io("dembridge_version", h.version);
   a.io("git_commit", h.git_commit);
   a.io("written_at", h.written_at);
@@ -373,6 +376,44 @@ std::string checkpoint_case_text(const dealii::ParameterHandler& prm, const fs::
   return out.str();
 }
 
+namespace
+{
+/// A fresh run refuses a folder that holds a checkpoint; a resumed one reads the checkpoint's
+/// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time).
+void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
+{
+  if (!s.resume)
+  {
+    if (fs::exists(s.file))
+    {
+      std::string at;
+      try
+      {
+        const CheckpointHeader h = read_checkpoint_header(s.file);
+        at = " (step " + std::to_string(h.step) + ", t = " + std::to_string(h.time) + " s)";
+      }
+      catch (const std::exception&)
+      {
+      }
+      throw InputError(s.file.string() + ": the folder holds the checkpoint of an interrupted " +
+                       "run" + at + "; continue it with --resume " + output_dir +
+                       ", or delete the file to start afresh");
+    }
+    return;
+  }
+  const CheckpointHeader h = read_checkpoint_header(s.file);
+  check_same_case(h, s.case_text, s.file);
+  // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split
+  if (h.mpi_ranks != s.ranks)
+    throw InputError(s.file.string() + ": the checkpoint was written by a run on " +
+                     std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
+                     std::to_string(s.ranks) + " (resume it with mpirun -np " +
+                     std::to_string(h.mpi_ranks) + ")");
+  s.resumed_step = h.step;
+  s.resumed_time = h.time;
+}
+} // namespace
+
 CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
                                       const std::string& case_file, std::string& output_dir,
                                       const std::string& resume_dir)
@@ -406,38 +447,32 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
                        "coupled) are checkpointed, this is a fem run");
     return s;
   }
-  const unsigned ranks = mode == "coupled" && (asked || s.resume)
-                             ? dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
-                             : 1;
-  if (ranks > 1)
-    throw InputError(s.case_name + ": " + (s.resume ? std::string("--resume") : key) +
-                     ": coupled runs are checkpointed on one MPI rank only (this run has " +
-                     std::to_string(ranks) + "; the continuum's works are summed per rank)");
+  // why: a coupled run's continuum is split over the ranks; each DEM process runs it all
+  const bool mpi = dealii::Utilities::MPI::job_supports_mpi();
+  const bool root = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (mode == "coupled" && mpi)
+    s.ranks = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
-  if (!s.resume)
-  {
-    if (fs::exists(s.file))
+  // rank 0 looks at the file, every rank gets its verdict (one line each, no rank left waiting)
+  std::string refused;
+  if (root)
+    try
     {
-      std::string at;
-      try
-      {
-        const CheckpointHeader h = read_checkpoint_header(s.file);
-        at = " (step " + std::to_string(h.step) + ", t = " + std::to_string(h.time) + " s)";
-      }
-      catch (const std::exception&)
-      {
-      }
-      throw InputError(s.file.string() + ": the folder holds the checkpoint of an interrupted " +
-                       "run" + at + "; continue it with --resume " + output_dir +
-                       ", or delete the file to start afresh");
+      check_checkpoint_file(s, output_dir);
     }
-    return s;
+    catch (const std::exception& e)
+    {
+      refused = *e.what() ? e.what() : "checkpoint: unknown error";
+    }
+  if (mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  {
+    refused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refused, 0);
+    s.resumed_step = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_step, 0);
+    s.resumed_time = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_time, 0);
   }
-  const CheckpointHeader h = read_checkpoint_header(s.file);
-  check_same_case(h, s.case_text, s.file);
-  s.resumed_step = h.step;
-  s.resumed_time = h.time;
+  if (!refused.empty())
+    throw InputError(refused);
   return s;
 }
 
@@ -455,7 +490,9 @@ CheckpointHeader read_checkpoint_header(const fs::path& file)
   Handle h = open_checkpoint(file);
   Hdf5Archive archive(h.get(), true, file.filename().string());
   CheckpointHeader header;
-  visit_header(archive, header);
+  const bool with_ranks = H5Lexists(h.get(), "header", H5P_DEFAULT) > 0 &&
+                          H5Lexists(h.get(), "header/mpi_ranks", H5P_DEFAULT) > 0;
+  visit_header(archive, header, with_ranks);
   return header;
 }
 
@@ -518,7 +555,7 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
     }
     Hdf5Archive archive(h.get(), false, file.filename().string());
     CheckpointHeader copy = header;
-    visit_header(archive, copy);
+    visit_header(archive, copy, true);
     if (written == kill_at)
     {
       H5Fflush(h.get(), H5F_SCOPE_GLOBAL); // half a checkpoint on the disk, then kill -9
@@ -571,6 +608,7 @@ CheckpointHeader make_checkpoint_header(const CheckpointSettings& settings, long
   h.written_at = utc_now();
   h.case_name = settings.case_name;
   h.case_text = settings.case_text;
+  h.mpi_ranks = settings.ranks;
   return h;
 }
 } // namespace dembridge::app

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <set>
 
@@ -25,6 +26,37 @@ using coupling::CoupledProblem;
 nlohmann::json to_json(const dem::Vec3& v)
 {
   return {v.x(), v.y(), v.z()};
+}
+
+/// Runs @p work on rank 0 only; its exception is thrown on every rank (an InputError as one), so
+/// that no rank waits in a collective call for a rank that has given up.
+void on_root(MPI_Comm comm, const std::function<void()>& work)
+{
+  std::string message;
+  bool input = false;
+  if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+    try
+    {
+      work();
+    }
+    catch (const dem::InputError& e)
+    {
+      message = e.what(), input = true;
+    }
+    catch (const std::exception& e)
+    {
+      message = *e.what() ? e.what() : "unknown error";
+    }
+  if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1)
+  {
+    message = dealii::Utilities::MPI::broadcast(comm, message, 0);
+    input = dealii::Utilities::MPI::broadcast(comm, input, 0);
+  }
+  if (message.empty())
+    return;
+  if (input)
+    throw dem::InputError(message);
+  throw std::runtime_error(message);
 }
 
 /// history.csv, the ParaView series of both sides and progress lines.
@@ -78,15 +110,35 @@ public:
 
   void on_start(CoupledProblem& problem, coupling::CoupledRunProgress& progress) override
   {
-    // refused before the first step, not at the first checkpoint
-    if ((checkpoint_.enabled() || checkpoint_.resume) &&
-        !problem.particle_solver()->checkpointable())
-      throw dem::InputError("Output/checkpoint interval: this run has forces on the particles "
-                            "that cannot be checkpointed yet");
+    // refused before the first step, not at the first checkpoint (the particles are rank 0's)
+    if (checkpoint_.enabled() || checkpoint_.resume)
+      on_root(problem.communicator(),
+              [&]
+              {
+                if (!problem.particle_solver()->checkpointable())
+                  throw dem::InputError("Output/checkpoint interval: this run has forces on the "
+                                        "particles that cannot be checkpointed yet");
+              });
     if (!checkpoint_.resume)
       return;
-    read_checkpoint(checkpoint_.file,
-                    [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
+    // rank 0 reads the file; every rank then takes its part of the continuum and the rest
+    on_root(problem.communicator(),
+            [&]
+            {
+              read_checkpoint(checkpoint_.file,
+                              [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
+            });
+    problem.scatter_state();
+    fem::broadcast_state(problem.communicator(),
+                         [&](dem::StateArchive& a)
+                         {
+                           progress.visit_state(a);
+                           int cycle = int(cycle_);
+                           a.io("cycle", cycle);
+                           cycle_ = unsigned(cycle);
+                         });
+    if (!root_)
+      return;
     std::printf("resumed from %s: step %ld, t = %.6g s\n", checkpoint_.file.string().c_str(),
                 problem.steps(), problem.time());
     std::fflush(stdout);
@@ -96,9 +148,14 @@ public:
   {
     if (checkpoint_.file.empty())
       return;
-    write_checkpoint(checkpoint_.file,
-                     make_checkpoint_header(checkpoint_, problem.steps(), problem.time()),
-                     [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
+    problem.gather_state(); // collective: the continuum's parts to rank 0, which writes
+    on_root(problem.communicator(),
+            [&]
+            {
+              write_checkpoint(checkpoint_.file,
+                               make_checkpoint_header(checkpoint_, problem.steps(), problem.time()),
+                               [&](dem::StateArchive& a) { visit_state(a, problem, progress); });
+            });
   }
 
   void on_record(const CoupledProblem& problem) override
@@ -221,9 +278,10 @@ public:
   }
 
 private:
-  /// The complete state of the run for a checkpoint (one rank, prepare_checkpoint): the
-  /// problem's, the loop's and what this observer has gathered (history.csv so far, the load
-  /// history, the snapshot lists of both sides, the crack output).
+  /// The complete state of the run for a checkpoint (rank 0, at the file; on_start and
+  /// on_checkpoint hand the other ranks their parts): the problem's, the loop's and what this
+  /// observer has gathered (history.csv so far, the load history, the snapshot lists of both
+  /// sides, the crack output).
   void visit_state(dem::StateArchive& a, CoupledProblem& problem,
                    coupling::CoupledRunProgress& progress)
   {
@@ -335,7 +393,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   const OutputSettings out = parse_output_settings(prm);
   auto problem = coupling::make_coupled_problem(c, comm);
   coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
-  if (!checkpoint.file.empty()) // prepare_checkpoint: one rank
+  if (!checkpoint.file.empty()) // prepare_checkpoint: not an FE run
   {
     run.checkpoint_interval = checkpoint.interval = out.checkpoint_interval;
     run.checkpoint_wall_interval = checkpoint.wall_interval = out.checkpoint_wall_interval;

@@ -102,10 +102,16 @@ public:
   void assemble_constraints();
   /// One coupled step (collective). With record = true the energies are refreshed.
   void step(bool record);
-  /// Checkpoints (docs/checkpoint.md; coupled_state.cc): saves or restores the complete state
-  /// between steps: the particles' (the DEM solver's visit), the continuum's (/fe/) and the
-  /// tie's (/coupling/: gap, works and their leads, energies, band damage). One MPI rank only.
+  /// Checkpoints (docs/checkpoint.md; coupled_state.cc) between steps, on any number of MPI
+  /// ranks with rank 0 alone at the file: the particles' state (the DEM solver's visit; they
+  /// live on rank 0), the continuum's (/fe/) and the tie's (/coupling/: gap, works and their
+  /// leads, energies, band damage). Saving: gather_state() on every rank (collective), then
+  /// visit_state(a) on rank 0. Restoring: visit_state(a) on rank 0, then scatter_state() on
+  /// every rank (collective: the continuum's parts and rank 0's tie state to each).
+  void gather_state();
   void visit_state(dem::StateArchive& a);
+  void scatter_state();
+  MPI_Comm communicator() const { return comm_; }
   /// FE fields of the current state; returns the .pvtu name (relative to @p dir).
   std::string output_results(const std::filesystem::path& dir, unsigned int cycle);
 
@@ -179,6 +185,8 @@ private:
   void tie_after_update(const dem::ParticleStore& p, double dt, bool record);
   void refresh_energies(bool record);
   void compute_time_step();
+  /// The tie's state (/coupling/), the same on every rank after scatter_state().
+  void visit_tie(dem::StateArchive& a);
 
   CouplingSettings settings_;
   fem::Parameters fe_prm_;

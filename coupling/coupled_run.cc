@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <deal.II/base/mpi.h>
 
 namespace dembridge::coupling
 {
@@ -85,10 +86,15 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
       while (progress.next_checkpoint_time <= problem.time() + 0.5 * dt)
         progress.next_checkpoint_time += s.checkpoint_interval;
     }
-    if (s.checkpoint_wall_interval > 0 &&
-        std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
-            s.checkpoint_wall_interval)
-      checkpoint = true;
+    if (s.checkpoint_wall_interval > 0)
+    {
+      bool due = std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
+                 s.checkpoint_wall_interval;
+      // why: the ranks' clocks differ and a checkpoint is collective: rank 0's clock decides
+      if (dealii::Utilities::MPI::n_mpi_processes(problem.communicator()) > 1)
+        due = dealii::Utilities::MPI::broadcast(problem.communicator(), due, 0);
+      checkpoint = checkpoint || due;
+    }
     if (checkpoint)
     {
       observer.on_checkpoint(problem, progress);

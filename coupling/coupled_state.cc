@@ -6,20 +6,32 @@
 // trial and earlier velocities, the residual, the slot buffers, the FE force vector and the
 // damping forces are overwritten in each step before they are read; the multipliers' solver
 // keeps no state between steps (CG starts from the lumped solution), the transfer and the
-// factorisation are rebuilt from the case.
+// factorisation are rebuilt from the case. On several MPI ranks rank 0 reads and writes the
+// file; the other ranks take its tie state by broadcast (every rank holds the same tie state).
 #include "coupling/coupled_problem.h"
-
-#include <deal.II/base/mpi.h>
 
 namespace dembridge::coupling
 {
+void CoupledProblem::gather_state()
+{
+  fe_->gather_state();
+}
+
 void CoupledProblem::visit_state(dem::StateArchive& a)
 {
-  // why: the particles live on rank 0 and the FE works are summed per rank
-  if (dealii::Utilities::MPI::n_mpi_processes(comm_) != 1)
-    throw std::runtime_error("checkpoints: coupled runs are checkpointed on one MPI rank only");
-  solver_->visit_state(a); // /particles/, /bonds/, /solver/
+  solver_->visit_state(a); // /particles/, /bonds/, /solver/ (rank 0's)
   fe_->visit_state(a);     // /fe/
+  visit_tie(a);            // /coupling/
+}
+
+void CoupledProblem::scatter_state()
+{
+  fe_->scatter_state();
+  fem::broadcast_state(comm_, [this](dem::StateArchive& a) { visit_tie(a); });
+}
+
+void CoupledProblem::visit_tie(dem::StateArchive& a)
+{
   dem::StateGroup group(a, "coupling");
   double dt = dt_;
   a.io("time_step", dt);
@@ -60,7 +72,7 @@ void CoupledProblem::visit_state(dem::StateArchive& a)
     BandDamage& b = band_damage_;
     std::size_t n_band = b.n_band_bonds;
     a.io("n_band_bonds", n_band);
-    if (a.loading() && n_band != b.n_band_bonds)
+    if (a.loading() && root_ && n_band != b.n_band_bonds) // rank 0 built the band
       throw dem::InputError(a.where() + "n_band_bonds: " + std::to_string(n_band) +
                             " in the checkpoint, " + std::to_string(b.n_band_bonds) +
                             " in this model");

@@ -1,6 +1,6 @@
 // dembridge::fem — explicit elastodynamics (lumped mass, central differences).
 #include "explicit_dynamics.h"
-#include "dem/core/state_archive.h"
+#include "dem/core/byte_archive.h"
 #include "fem/local_array.h"
 
 #include <deal.II/base/function_parser.h>
@@ -11,6 +11,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -328,38 +329,146 @@ void ExplicitDynamics::update(const double dt, const bool record)
   ++step_number;
 }
 
+void broadcast_state(MPI_Comm comm, const std::function<void(dem::StateArchive&)>& visit)
+{
+  std::string bytes;
+  if (Utilities::MPI::this_mpi_process(comm) == 0)
+  {
+    dem::ByteArchive packed;
+    visit(packed);
+    bytes = packed.bytes();
+  }
+  if (Utilities::MPI::n_mpi_processes(comm) == 1)
+    return;
+  bytes = Utilities::MPI::broadcast(comm, bytes, 0);
+  if (Utilities::MPI::this_mpi_process(comm) != 0)
+  {
+    dem::ByteArchive unpacked(std::move(bytes));
+    visit(unpacked);
+  }
+}
+
+void ExplicitDynamics::owned_ranges(std::vector<int>& counts, std::vector<int>& offsets) const
+{
+  const unsigned int ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+  // MPI counts are int
+  if (dof_handler.n_dofs() > types::global_dof_index(std::numeric_limits<int>::max()))
+    throw std::runtime_error("checkpoints: more than 2^31 FE DoFs");
+  const unsigned long long mine[2] = {
+      locally_owned_dofs.n_elements() > 0 ? locally_owned_dofs.nth_index_in_set(0) : 0,
+      locally_owned_dofs.n_elements()};
+  std::vector<unsigned long long> all(2 * ranks);
+  MPI_Allgather(mine, 2, MPI_UNSIGNED_LONG_LONG, all.data(), 2, MPI_UNSIGNED_LONG_LONG,
+                mpi_communicator);
+  counts.assign(ranks, 0);
+  offsets.assign(ranks, 0);
+  unsigned long long next = 0;
+  for (unsigned int r = 0; r < ranks; ++r)
+  {
+    counts[r] = int(all[2 * r + 1]);
+    offsets[r] = int(next);
+    if (counts[r] > 0 && all[2 * r] != next)
+      throw std::logic_error("checkpoints: the FE DoFs are not owned in rank order");
+    next += all[2 * r + 1];
+  }
+}
+
 // Checkpoint state (docs/checkpoint.md, /fe/). Between steps a step reads u_n (u_owned, and
 // `solution`, its ghosted copy), v_{n-1/2}, the applied forces, the time (driven boundaries are
 // ramps of it), the step count (the half-step start) and the works summed so far; the trial
 // velocity, step, internal and outside forces are overwritten by predict() before they are read.
 // The energies are those of the last record (read by the caller between records).
-void ExplicitDynamics::visit_state(dem::StateArchive& a)
+void ExplicitDynamics::gather_state()
 {
-  // why: the works are summed per rank and the vectors stored in one rank's order
-  if (Utilities::MPI::n_mpi_processes(mpi_communicator) != 1)
-    throw std::runtime_error("checkpoints: the continuum's state is checkpointed on one MPI "
-                             "rank only");
-  dem::StateGroup group(a, "fe");
-  const std::size_t n = locally_owned_dofs.n_elements(); // one rank: global DoF order
-  for (auto [name, vector] :
-       {std::pair{"displacement", &u_owned}, std::pair{"velocity", &velocity_half},
-        std::pair{"applied_force", &applied_force}})
+  std::vector<int> counts, offsets;
+  owned_ranges(counts, offsets);
+  const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+  const unsigned int ranks = counts.size();
+  for (auto [vector, out] :
+       {std::pair{&u_owned, &gathered.u}, std::pair{&velocity_half, &gathered.v},
+        std::pair{&applied_force, &gathered.applied}})
   {
     LocalArray local(*vector);
-    std::vector<double> values(local.data(), local.data() + n);
-    a.io_sized(name, values);
-    if (a.loading())
-      std::copy(values.begin(), values.end(), local.data());
+    out->assign(rank == 0 ? dof_handler.n_dofs() : 0, 0.0);
+    MPI_Gatherv(local.data(), counts[rank], MPI_DOUBLE, out->data(), counts.data(), offsets.data(),
+                MPI_DOUBLE, 0, mpi_communicator);
   }
-  if (a.loading())
-    solution = u_owned;
+  const double works[3] = {boundary_work_summed, damping_summed, outside_work_summed};
+  std::vector<double> all(rank == 0 ? 3 * ranks : 0);
+  MPI_Gather(works, 3, MPI_DOUBLE, all.data(), 3, MPI_DOUBLE, 0, mpi_communicator);
+  for (auto* w : {&gathered.boundary_work, &gathered.damping, &gathered.outside_work})
+    w->clear();
+  for (std::size_t r = 0; r < all.size() / 3; ++r)
+  {
+    gathered.boundary_work.push_back(all[3 * r]);
+    gathered.damping.push_back(all[3 * r + 1]);
+    gathered.outside_work.push_back(all[3 * r + 2]);
+  }
+}
+
+void ExplicitDynamics::visit_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "fe");
+  const std::size_t ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+  for (auto [name, values] :
+       {std::pair{"displacement", &gathered.u}, std::pair{"velocity", &gathered.v},
+        std::pair{"applied_force", &gathered.applied}})
+  {
+    if (a.loading())
+      values->assign(dof_handler.n_dofs(), 0.0);
+    a.io_sized(name, *values);
+  }
+  // why: each rank sums its own share; another partition adds other numbers in another order
+  for (auto [name, values] : {std::pair{"boundary_work_summed", &gathered.boundary_work},
+                              std::pair{"damping_summed", &gathered.damping},
+                              std::pair{"outside_work_summed", &gathered.outside_work}})
+  {
+    a.io(name, *values);
+    if (a.loading() && values->size() != ranks)
+      throw dem::InputError(a.where() + name + ": the checkpoint was written on " +
+                            std::to_string(values->size()) + " MPI rank(s), this run has " +
+                            std::to_string(ranks) + " (resume it on as many)");
+  }
+  visit_scalars(a);
+  if (!a.loading())
+    gathered = Gathered(); // written: free rank 0's copies
+}
+
+void ExplicitDynamics::scatter_state()
+{
+  std::vector<int> counts, offsets;
+  owned_ranges(counts, offsets);
+  const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+  const unsigned int ranks = counts.size();
+  for (auto [vector, in] :
+       {std::pair{&u_owned, &gathered.u}, std::pair{&velocity_half, &gathered.v},
+        std::pair{&applied_force, &gathered.applied}})
+  {
+    LocalArray local(*vector);
+    MPI_Scatterv(in->data(), counts.data(), offsets.data(), MPI_DOUBLE, local.data(), counts[rank],
+                 MPI_DOUBLE, 0, mpi_communicator);
+  }
+  solution = u_owned;
+  std::vector<double> all;
+  if (rank == 0)
+    for (unsigned int r = 0; r < ranks; ++r)
+      all.insert(all.end(),
+                 {gathered.boundary_work[r], gathered.damping[r], gathered.outside_work[r]});
+  double works[3];
+  MPI_Scatter(all.data(), 3, MPI_DOUBLE, works, 3, MPI_DOUBLE, 0, mpi_communicator);
+  boundary_work_summed = works[0];
+  damping_summed = works[1];
+  outside_work_summed = works[2];
+  gathered = Gathered();
+  broadcast_state(mpi_communicator, [this](dem::StateArchive& a) { visit_scalars(a); });
+}
+
+void ExplicitDynamics::visit_scalars(dem::StateArchive& a)
+{
   a.io("time", current_time);
   long steps = step_number;
   a.io("steps", steps);
   step_number = static_cast<unsigned int>(steps);
-  a.io("boundary_work_summed", boundary_work_summed);
-  a.io("damping_summed", damping_summed);
-  a.io("outside_work_summed", outside_work_summed);
   {
     dem::StateGroup energies(a, "energy");
     a.io("kinetic_shadow", energy.kinetic_shadow);

@@ -46,6 +46,10 @@ class StateArchive; // dem/core/state_archive.h
 
 namespace dembridge::fem
 {
+/// Runs @p visit on rank 0 (saving) and on every other rank (restoring what rank 0's visit
+/// named): rank 0's state for all (collective; the visit must name the same fields everywhere).
+void broadcast_state(MPI_Comm comm, const std::function<void(dem::StateArchive&)>& visit);
+
 class ExplicitDynamics : public ElasticProblem
 {
 public:
@@ -139,17 +143,30 @@ public:
   };
   const Energies& energies() const { return energy; }
 
-  /// Checkpoints (docs/checkpoint.md, group /fe/): saves or restores what a step reads from the
-  /// previous ones: u_n, v_{n-1/2}, the applied forces, time and step count, the works summed
-  /// so far, the last energies and the .pvd records. One MPI rank only (the works are summed per
-  /// rank); vectors in global DoF order, checked against this mesh's DoF count on restore.
+  /// Checkpoints (docs/checkpoint.md, group /fe/) on any number of MPI ranks, with rank 0 alone
+  /// at the file: what a step reads from the previous ones, u_n, v_{n-1/2}, the applied forces
+  /// (in global DoF order, checked against this mesh's DoF count on restore), the works summed
+  /// so far (one value per rank: each rank sums its own share), time and step count, the last
+  /// energies and the .pvd records.
+  ///  - saving: gather_state() (collective) brings every rank's part to rank 0, whose
+  ///    visit_state(a) writes it;
+  ///  - restoring: rank 0's visit_state(a) reads it (refusing another DoF or rank count), then
+  ///    scatter_state() (collective) gives every rank its owned entries, its works and rank 0's
+  ///    time, steps, energies and records.
+  void gather_state();
   void visit_state(dem::StateArchive& a);
+  void scatter_state();
 
   /// Writes displacement, strain, stress (.vtu per rank, .pvtu, FEM/Output/base name .pvd);
   /// returns the .pvtu file name (relative to @p output_dir).
   std::string output(const std::filesystem::path& output_dir, unsigned int cycle, double time);
 
 private:
+  /// Time, steps, energies and .pvd records: the same on every rank.
+  void visit_scalars(dem::StateArchive& a);
+  /// Every rank's owned range (PETSc owns one contiguous range per rank, in rank order).
+  void owned_ranges(std::vector<int>& counts, std::vector<int>& offsets) const;
+
   void assemble_lumped_mass();
   void compute_stable_time_step();
   void apply_initial_displacement();
@@ -180,6 +197,12 @@ private:
   /// The works as summed step by step (trapezoidal, with the half-step lead, see update()):
   /// this rank's shares.
   double boundary_work_summed = 0, damping_summed = 0, outside_work_summed = 0;
+  /// The state of a checkpoint on rank 0 between gather/visit and visit/scatter: whole vectors
+  /// and the works of every rank (empty otherwise).
+  struct Gathered
+  {
+    std::vector<double> u, v, applied, boundary_work, damping, outside_work;
+  } gathered;
   double critical_time_step = 0;
   double current_time = 0;
   unsigned int step_number = 0;

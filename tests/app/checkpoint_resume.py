@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Kill -9 and resume (issue 11; docs/checkpoint.md).
 
-usage: checkpoint_resume.py DEMBRIDGE CASE OUT [--expect-cracks] [--coupled] [--set KEY=VALUE]...
+usage: checkpoint_resume.py DEMBRIDGE CASE OUT [--expect-cracks] [--coupled]
+                            [--np N --mpiexec MPIEXEC] [--set KEY=VALUE]...
 
 Runs the case (one thread, with Output/checkpoint interval among the --set) uninterrupted into
 OUT/reference, then four runs that die by SIGKILL at different moments and are resumed with
@@ -13,9 +14,13 @@ OUT/reference, then four runs that die by SIGKILL at different moments and are r
   external      a real `kill -9` from this script once the first checkpoint exists
 Every resumed run must end with the reference's files, byte for byte (summary.json without its
 timing and provenance keys; deal.II's .vtu, .pvtu and .pvd without the date line it writes).
-With --coupled (Mode = coupled; one MPI rank) the runs are after_first, in_write and, with
---expect-cracks (broken bonds, no contacts needed), late; the external kill is left out (its
-path is the DEM runs'). Then the refusals, each one line and exit code 1: a checkpoint of
+With --coupled (Mode = coupled) the runs are after_first, in_write and, with --expect-cracks
+(broken bonds, no contacts needed), late; on one MPI rank the external kill is left out (its
+path is the DEM runs'). With --np N (N > 1, coupled) every run, the reference's too, is
+`MPIEXEC -np N dembridge ...` and the external kill is a `kill -9` of the whole job (mpirun and
+its ranks) once the first checkpoint exists; the refusals below are left to the one-rank runs
+(checkpoint_ranks.py checks the refusal of another rank count). Then the refusals, each one
+line and exit code 1: a checkpoint of
 another case, a fresh run into a folder that holds a checkpoint, --resume without one, a
 checkpoint of the other mode (a DEM run's resumed as a coupled case and vice versa). Without
 --expect-cracks and --coupled also: a resume on two threads completes with the same bonds and E within 1e-6.
@@ -48,7 +53,7 @@ def main():
     if len(args) < 3:
         fail(__doc__)
     exe, case, out = args[0], args[1], args[2]
-    sets, expect_cracks, coupled = [], False, False
+    sets, expect_cracks, coupled, np, mpiexec = [], False, False, 1, None
     rest = args[3:]
     i = 0
     while i < len(rest):
@@ -61,16 +66,28 @@ def main():
         elif rest[i] == "--coupled":
             coupled = True
             i += 1
+        elif rest[i] == "--np":
+            np = int(rest[i + 1])
+            i += 2
+        elif rest[i] == "--mpiexec":
+            mpiexec = rest[i + 1]
+            i += 2
         else:
             fail("unknown argument " + rest[i])
+    if np > 1 and not (coupled and mpiexec):
+        fail("--np needs --coupled and --mpiexec")
     sets += ["--set", "Simulation/threads=1"]
+    launch = [mpiexec, "-np", str(np), "--oversubscribe"] if np > 1 else []
+    # a job killed by SIGKILL: the process's status, or mpirun's exit code after a rank's death
+    def killed(rc):
+        return rc == -signal.SIGKILL if np == 1 else rc not in (0, 1)
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
 
     def run(folder, extra=(), env_extra=None, resume=False, threads=None):
         env = dict(os.environ)
         env.update(env_extra or {})
-        cmd = [exe, "run", case] + sets + list(extra)
+        cmd = launch + [exe, "run", case] + sets + list(extra)
         if threads:
             cmd += ["--set", "Simulation/threads=%d" % threads]
         cmd += ["--resume", folder] if resume else ["--output-dir", folder]
@@ -153,19 +170,21 @@ def main():
         folder = os.path.join(out, name)
         if external:
             env = dict(os.environ)
-            cmd = [exe, "run", case] + sets + ["--output-dir", folder]
-            p = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            cmd = launch + [exe, "run", case] + sets + ["--output-dir", folder]
+            # its own process group: kill -9 of the whole job (mpirun and its ranks) at once
+            p = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                 start_new_session=True)
             checkpoint = os.path.join(folder, "checkpoint.h5")
             while p.poll() is None and not os.path.exists(checkpoint):
                 time.sleep(0.001)
             if p.poll() is not None:
                 fail("the run ended before its first checkpoint could be killed")
-            os.kill(p.pid, signal.SIGKILL)
+            os.killpg(p.pid, signal.SIGKILL)
             p.wait()
             rc = p.returncode
         else:
             rc = run(folder, env_extra=env_extra).returncode
-        if rc != -signal.SIGKILL:
+        if not killed(rc):
             fail("%s: expected death by SIGKILL, got exit status %s" % (name, rc))
         if os.path.exists(os.path.join(folder, "summary.json")):
             fail(name + ": a killed run left a summary.json")
@@ -182,8 +201,11 @@ def main():
     if expect_cracks or not coupled:
         killed_then_resumed("late", {"DEMBRIDGE_TEST_KILL_AFTER_STEP": str(late)})
     killed_then_resumed("in_write", {"DEMBRIDGE_TEST_KILL_IN_CHECKPOINT": "2"})
-    if not coupled:
+    if not coupled or np > 1:
         killed_then_resumed("external", external=True)
+    if np > 1:
+        print("ok")
+        return
 
     # refusals: one line, exit code 1
     folder = os.path.join(out, "refusals")

@@ -5,6 +5,7 @@
 // the write is atomic (only the final name after a write; a stale .tmp is replaced), and a
 // missing field is named.
 #include "app/checkpoint.h"
+#include "dem/core/byte_archive.h"
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -73,6 +74,7 @@ app::CheckpointHeader header()
   h.written_at = "2026-01-01T00:00:00Z";
   h.case_name = "case.prm";
   h.case_text = "subsection Simulation\n  set end time = 0.01\nend\n";
+  h.mpi_ranks = 3;
   return h;
 }
 
@@ -138,6 +140,52 @@ TEST(Checkpoint, EveryFieldTypeRoundTripsBitForBit)
   EXPECT_EQ(h.time, 1.25e-3);
   EXPECT_EQ(h.case_text, header().case_text);
   EXPECT_EQ(h.case_name, "case.prm");
+  EXPECT_EQ(h.mpi_ranks, 3);
+}
+
+// A header without mpi_ranks (written before coupled runs were checkpointed on several ranks)
+// is one rank's.
+TEST(Checkpoint, HeaderWithoutRanksIsOneRanks)
+{
+  const fs::path file = scratch("no_ranks.h5");
+  app::write_checkpoint(file, header(), [](dem::StateArchive&) {});
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_GE(H5Ldelete(f, "header/mpi_ranks", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  EXPECT_EQ(app::read_checkpoint_header(file).mpi_ranks, 1);
+}
+
+// The in-memory archive that hands rank 0's restored state to the other ranks: every field
+// type bit for bit, in the order named; another name is a program error.
+TEST(Checkpoint, ByteArchiveRoundTripsBitForBit)
+{
+  Fields written;
+  dem::ByteArchive packed;
+  written.visit(packed);
+  Fields read;
+  read.d.clear(), read.i32 = {1}, read.v3.clear(), read.q.clear(), read.empty = {5.0};
+  read.text.clear(), read.empty_text = "x", read.x = 0, read.n = 0, read.flag = false;
+  dem::ByteArchive unpacked(packed.bytes());
+  read.visit(unpacked);
+  ASSERT_EQ(read.d.size(), written.d.size());
+  EXPECT_EQ(std::memcmp(read.d.data(), written.d.data(), read.d.size() * sizeof(double)), 0);
+  EXPECT_EQ(read.i32, written.i32);
+  EXPECT_EQ(read.i64, written.i64);
+  EXPECT_EQ(read.u32, written.u32);
+  EXPECT_EQ(read.v3, written.v3);
+  ASSERT_EQ(read.q.size(), written.q.size());
+  EXPECT_EQ(read.q[0].coeffs(), written.q[0].coeffs());
+  EXPECT_TRUE(read.empty.empty());
+  EXPECT_EQ(read.text, written.text);
+  EXPECT_EQ(read.empty_text, "");
+  EXPECT_EQ(read.x, written.x);
+  EXPECT_EQ(read.n, written.n);
+  EXPECT_TRUE(read.flag);
+  dem::ByteArchive other(packed.bytes());
+  std::vector<double> v;
+  dem::StateGroup g(other, "fields");
+  EXPECT_THROW(other.io("velocity", v), std::logic_error);
 }
 
 TEST(Checkpoint, QuaternionsAreStoredWFirst)

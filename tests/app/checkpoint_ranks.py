@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""A coupled checkpoint is resumed on the number of MPI ranks that wrote it, no other (issue 11;
+docs/checkpoint.md): each rank sums its own share of the continuum's works.
+
+usage: checkpoint_ranks.py DEMBRIDGE MPIEXEC CASE OUT [--set KEY=VALUE]...
+
+Runs the coupled case (with Output/checkpoint interval among the --set) under `MPIEXEC -np 2`,
+killed (SIGKILL) a few steps after its first checkpoint, and resumes it on one rank; then the
+reverse (written on one rank, resumed on two). Each resume must be refused with exit code 1 and
+one line on the stderr of every rank naming both rank counts, before any step.
+Plain python3.
+"""
+import glob
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def main():
+    if len(sys.argv) < 5:
+        fail(__doc__)
+    exe, mpiexec, case, out = sys.argv[1:5]
+    sets = sys.argv[5:] + ["--set", "Simulation/threads=1"]
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+
+    def run(np, folder, resume=False, env_extra=None):
+        """Runs on np ranks; returns the exit code and each rank's stderr (kept apart)."""
+        env = dict(os.environ)
+        env.update(env_extra or {})
+        where = ["--resume", folder] if resume else ["--output-dir", folder]
+        errdir = tempfile.mkdtemp()
+        try:
+            rank_err = '2>"%s/rank.${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}}"' % errdir
+            cmd = [mpiexec, "-np", str(np), "--oversubscribe", "sh", "-c",
+                   'exec "$0" "$@" ' + rank_err, exe, "run", case] + sets + where
+            rc = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL).returncode
+            errs = []
+            for r in range(np):
+                path = os.path.join(errdir, "rank.%d" % r)
+                errs.append(open(path).read() if os.path.exists(path) else None)
+            return rc, errs
+        finally:
+            shutil.rmtree(errdir, ignore_errors=True)
+
+    for written, resumed in ((2, 1), (1, 2)):
+        folder = os.path.join(out, "np%d_resumed_on_%d" % (written, resumed))
+        # the first checkpoint is written at step 78 (0.2 ms) of coupled_pull.prm
+        rc, _ = run(written, folder, env_extra={"DEMBRIDGE_TEST_KILL_AFTER_STEP": "80"})
+        if rc in (0, 1) or not os.path.exists(os.path.join(folder, "checkpoint.h5")):
+            fail("np %d: the run was not killed after a checkpoint (exit code %d)" % (written, rc))
+        rc, errs = run(resumed, folder, resume=True)
+        expected = ("checkpoint.h5: the checkpoint was written by a run on %d MPI rank(s), this "
+                    "run has %d (resume it with mpirun -np %d)" % (written, resumed, written))
+        for r, err in enumerate(errs):
+            if err is None or err.count("\n") != 1 or not err.endswith("\n") or expected not in err:
+                fail("np %d resumed on %d: rank %d: expected one line with '%s', got %r" %
+                     (written, resumed, r, expected, err))
+            print("  np %d resumed on %d, rank %d: %s" % (written, resumed, r, err.strip()))
+        if rc != 1:
+            fail("np %d resumed on %d: exit code %d, expected 1" % (written, resumed, rc))
+        if os.path.exists(os.path.join(folder, "summary.json")):
+            fail("a refused resume wrote summary.json")
+        if not glob.glob(os.path.join(folder, "checkpoint.h5")):
+            fail("a refused resume removed the checkpoint")
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
