@@ -39,10 +39,11 @@ BoundaryNames read_physical_names(const std::string& file);
 /// The same from a stream; @p file names it in messages.
 BoundaryNames read_physical_names(std::istream& in, const std::string& file);
 
-/// Checks that every $Section of a .msh text is closed by its $EndSection before the next one
-/// opens (deal.II's reader loops forever on some files that break this: fuzz/findings/) and
-/// that the format version is 2.2 or 4.1; throws std::runtime_error naming FEM/Mesh/file,
-/// @p file and the line otherwise.
+/// Checks a .msh text before deal.II reads it (msh_check.cc): every $Section closed by its
+/// $EndSection before the next one opens (deal.II's reader loops forever on some files that
+/// break this: fuzz/findings/), the format version 2.2 or 4.1 (ASCII), and the node and element
+/// sections (and 4.1's $Entities) consistent with their counts, every element node defined;
+/// throws std::runtime_error naming FEM/Mesh/file, @p file and the line otherwise.
 void check_msh_sections(std::istream& in, const std::string& file);
 
 } // namespace dembridge::fem
