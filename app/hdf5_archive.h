@@ -125,7 +125,8 @@ public:
       wxyz[4 * k + 2] = v[k].y(), wxyz[4 * k + 3] = v[k].z();
     }
     std::vector<std::array<double, 4>> rows(v.size());
-    std::memcpy(rows.data(), wxyz.data(), wxyz.size() * sizeof(double));
+    if (!wxyz.empty()) // why: memcpy with an empty vector's null data() is undefined (UBSan)
+      std::memcpy(rows.data(), wxyz.data(), wxyz.size() * sizeof(double));
     array(n, rows, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5T_FLOAT, 4);
     if (loading_)
     {

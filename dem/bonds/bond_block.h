@@ -11,6 +11,7 @@
 #include "dem/core/particle_store.h"
 #include <algorithm>
 #include <cstddef>
+#include <vector>
 
 namespace dembridge::dem
 {
@@ -18,6 +19,16 @@ namespace dembridge::dem
 #define BOND_BLOCK_W 8
 #endif
 inline constexpr int bond_block_width = BOND_BLOCK_W;
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double),
+              "the bond law reads Vec3 and Quat arrays as plain doubles");
+
+/// The doubles of a Vec3 or Quat array; null for an empty one (why: v.data()->data() would
+/// dereference a null pointer there, which UBSan reports on a specimen without bonds).
+template <class T> const double* raw_doubles(const std::vector<T>& v)
+{
+  return reinterpret_cast<const double*>(v.data());
+}
 
 /// Raw views of the arrays the bond law reads (Eigen's storage: Vec3 = 3 doubles, Quat = x, y,
 /// z, w).
@@ -28,9 +39,9 @@ struct BondLawArrays
   const double *L0, *e0, *kn, *ks, *ktor, *kben, *s, *ct, *cr;
 
   BondLawArrays(const ParticleStore& p, const BondStore& bonds)
-      : x(p.position.data()->data()), q(p.orientation.data()->coeffs().data()),
-        v(p.velocity.data()->data()), w(p.angular_velocity.data()->data()), a(bonds.a.data()),
-        b(bonds.b.data()), L0(bonds.rest_length.data()), e0(bonds.rest_axis.data()->data()),
+      : x(raw_doubles(p.position)), q(raw_doubles(p.orientation)), v(raw_doubles(p.velocity)),
+        w(raw_doubles(p.angular_velocity)), a(bonds.a.data()), b(bonds.b.data()),
+        L0(bonds.rest_length.data()), e0(raw_doubles(bonds.rest_axis)),
         kn(bonds.kn.data()), ks(bonds.ks.data()), ktor(bonds.ktor.data()), kben(bonds.kben.data()),
         s(bonds.contact_fraction.data()), ct(bonds.damping_force.data()),
         cr(bonds.damping_moment.data())

@@ -64,7 +64,8 @@ private:
     const std::size_t n = get();
     need(n * sizeof(T), name);
     v.resize(n);
-    std::memcpy(static_cast<void*>(v.data()), bytes_.data() + at_, n * sizeof(T));
+    if (n > 0) // why: memcpy from or to the null data() of an empty vector is undefined
+      std::memcpy(static_cast<void*>(v.data()), bytes_.data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
   }
   void put(std::size_t n) { bytes_.append(reinterpret_cast<const char*>(&n), sizeof n); }
