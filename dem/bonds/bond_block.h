@@ -41,8 +41,8 @@ struct BondLawArrays
   BondLawArrays(const ParticleStore& p, const BondStore& bonds)
       : x(raw_doubles(p.position)), q(raw_doubles(p.orientation)), v(raw_doubles(p.velocity)),
         w(raw_doubles(p.angular_velocity)), a(bonds.a.data()), b(bonds.b.data()),
-        L0(bonds.rest_length.data()), e0(raw_doubles(bonds.rest_axis)),
-        kn(bonds.kn.data()), ks(bonds.ks.data()), ktor(bonds.ktor.data()), kben(bonds.kben.data()),
+        L0(bonds.rest_length.data()), e0(raw_doubles(bonds.rest_axis)), kn(bonds.kn.data()),
+        ks(bonds.ks.data()), ktor(bonds.ktor.data()), kben(bonds.kben.data()),
         s(bonds.contact_fraction.data()), ct(bonds.damping_force.data()),
         cr(bonds.damping_moment.data())
   {
