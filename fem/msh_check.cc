@@ -220,8 +220,12 @@ void check_msh_sections(std::istream& in, const std::string& file)
   { return version == "4.1" && (s == "$Entities" || s == "$Nodes" || s == "$Elements"); };
   for (long n = 1; std::getline(in, line); ++n)
   {
-    if (!line.empty() && line.back() == '\r')
-      line.pop_back();
+    // why: deal.II reads the file token by token, so an indented "\t$PhysicalNames" opens a
+    // section for it too (and it then looked for the end marker forever: a fuzz_mesh finding)
+    const auto first = line.find_first_not_of(" \t\r\v\f");
+    line = first == std::string::npos
+               ? std::string()
+               : line.substr(first, line.find_last_not_of(" \t\r\v\f") - first + 1);
     if (open == "$MeshFormat" && n == open_line + 1)
     {
       // why: deal.II 9.4 reads other version numbers with the wrong layout and writes out of
