@@ -15,6 +15,7 @@
 #include "mesh.h"
 
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -136,44 +137,68 @@ void check_msh41_entities(Tokens& t)
   t.finish();
 }
 
+/// The entity blocks of a 4.1 $Nodes or $Elements section: the header "blocks total min-tag
+/// max-tag", then per block its count, whose running sum must stay within the declared total
+/// and reach it at the end. @p entry names one entry ("node", "element") in the errors.
+class Blocks
+{
+public:
+  Blocks(Tokens& t, const std::string& entry) : t_(t), entry_(entry)
+  {
+    blocks_ = t.integer("the number of entity blocks");
+    total_ = t.integer("the number of " + entry + "s");
+    t.integer("the smallest " + entry + " tag");
+    t.integer("the largest " + entry + " tag");
+  }
+  long size() const { return blocks_; }
+  /// The next block's number of entries, counted against the declared total.
+  long count()
+  {
+    const long n = t_.integer("the number of " + entry_ + "s in the block");
+    listed_ += n;
+    if (listed_ > total_)
+      t_.fail(t_.last_line(), "the blocks list more " + entry_ + "s than the " +
+                                  std::to_string(total_) + " declared");
+    return n;
+  }
+  /// After the last block: every declared entry listed, and nothing after them.
+  void finish()
+  {
+    if (listed_ != total_)
+      t_.fail(t_.last_line(), std::to_string(total_) + " " + entry_ + "s declared, " +
+                                  std::to_string(listed_) + " listed");
+    t_.finish();
+  }
+
+private:
+  Tokens& t_;
+  std::string entry_;
+  long blocks_ = 0, total_ = 0, listed_ = 0;
+};
+
 void check_msh41_nodes(Tokens& t, std::set<long>& nodes)
 {
-  const long blocks = t.integer("the number of entity blocks"),
-             total = t.integer("the number of nodes");
-  t.integer("the smallest node tag");
-  t.integer("the largest node tag");
-  long listed = 0;
-  for (long b = 0; b < blocks; ++b)
+  Blocks blocks(t, "node");
+  for (long b = 0; b < blocks.size(); ++b)
   {
     t.integer("an entity dimension");
     t.integer("an entity tag");
     if (t.integer("the parametric flag") != 0)
       t.fail(t.last_line(), "parametric node coordinates are not read (save without them)");
-    const long count = t.integer("the number of nodes in the block");
-    listed += count;
-    if (listed > total)
-      t.fail(t.last_line(),
-             "the blocks list more nodes than the " + std::to_string(total) + " declared");
+    const long count = blocks.count();
     for (long k = 0; k < count; ++k)
       if (!nodes.insert(t.integer("a node tag", 1)).second)
         t.fail(t.last_line(), "node tag defined twice");
     for (long k = 0; k < 3 * count; ++k)
       t.real("a node coordinate");
   }
-  if (listed != total)
-    t.fail(t.last_line(),
-           std::to_string(total) + " nodes declared, " + std::to_string(listed) + " listed");
-  t.finish();
+  blocks.finish();
 }
 
 void check_msh41_elements(Tokens& t, const std::set<long>& nodes)
 {
-  const long blocks = t.integer("the number of entity blocks"),
-             total = t.integer("the number of elements");
-  t.integer("the smallest element tag");
-  t.integer("the largest element tag");
-  long listed = 0;
-  for (long b = 0; b < blocks; ++b)
+  Blocks blocks(t, "element");
+  for (long b = 0; b < blocks.size(); ++b)
   {
     t.integer("an entity dimension");
     t.integer("an entity tag");
@@ -181,11 +206,7 @@ void check_msh41_elements(Tokens& t, const std::set<long>& nodes)
     const int per_element = msh_nodes_of_type(type);
     if (per_element == 0)
       t.fail(t.last_line(), "element type " + std::to_string(type) + " is not read");
-    const long count = t.integer("the number of elements in the block");
-    listed += count;
-    if (listed > total)
-      t.fail(t.last_line(),
-             "the blocks list more elements than the " + std::to_string(total) + " declared");
+    const long count = blocks.count();
     for (long k = 0; k < count; ++k)
     {
       const long tag = t.integer("an element tag", 1);
@@ -198,10 +219,7 @@ void check_msh41_elements(Tokens& t, const std::set<long>& nodes)
       }
     }
   }
-  if (listed != total)
-    t.fail(t.last_line(),
-           std::to_string(total) + " elements declared, " + std::to_string(listed) + " listed");
-  t.finish();
+  blocks.finish();
 }
 } // namespace
 
@@ -210,7 +228,7 @@ void check_msh_sections(std::istream& in, const std::string& file)
   std::string line, open, version;
   long open_line = 0, declared = 0, listed = 0;
   std::set<long> nodes;
-  std::vector<std::string> lines41; // the open 4.1 section's lines
+  std::optional<Tokens> tokens41; // the open 4.1 section's values
   const auto fail = [&](long n, const std::string& what)
   {
     throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) + ": " +
@@ -237,8 +255,8 @@ void check_msh_sections(std::istream& in, const std::string& file)
       if (line.find(" 0 ") == std::string::npos)
         fail(n, "binary .msh files are not read (save as ASCII: gmsh -format msh22 or msh41)");
     }
-    if (checked41(open) && (line.empty() || line[0] != '$'))
-      lines41.push_back(line);
+    if (tokens41 && (line.empty() || line[0] != '$'))
+      tokens41->add_line(line, n);
     // Version 2.2 nodes and elements: counts, fields and node numbers checked, since deal.II
     // 9.4 reads an element's node numbers unchecked (a number beyond the nodes crashed it).
     if (version == "2.2" && (open == "$Nodes" || open == "$Elements") && !line.empty() &&
@@ -285,18 +303,15 @@ void check_msh_sections(std::istream& in, const std::string& file)
         throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) + ": '" +
                                  line + "' closes no open section" +
                                  (open.empty() ? "" : " (" + open + " is open)"));
-      if (checked41(open))
+      if (tokens41)
       {
-        Tokens t(file, open);
-        for (std::size_t k = 0; k < lines41.size(); ++k)
-          t.add_line(lines41[k], open_line + 1 + long(k));
         if (open == "$Entities")
-          check_msh41_entities(t);
+          check_msh41_entities(*tokens41);
         else if (open == "$Nodes")
-          check_msh41_nodes(t, nodes);
+          check_msh41_nodes(*tokens41, nodes);
         else
-          check_msh41_elements(t, nodes);
-        lines41.clear();
+          check_msh41_elements(*tokens41, nodes);
+        tokens41.reset();
       }
       open.clear();
     }
@@ -306,7 +321,11 @@ void check_msh_sections(std::istream& in, const std::string& file)
                                open.substr(1) + " before " + line + " (line " + std::to_string(n) +
                                ")");
     else
+    {
       open = line, open_line = n;
+      if (checked41(open))
+        tokens41.emplace(file, open);
+    }
   }
   if (!open.empty())
     throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
