@@ -25,6 +25,13 @@ void declare_coupling_parameters(ParameterHandler& prm)
                     "Width L of the handshake band (m), inside the particle region along its "
                     "faces that lie inside the FE domain; at least two particle diameters. "
                     "0: three particle diameters.");
+  prm.declare_entry("particle region file", "", dealii::Patterns::Anything(),
+                    "The particle region as the volume of a gmsh mesh (.msh 2.2 or 4.1, "
+                    "tetrahedra or hexahedra) inside the FE domain, relative to the case file's "
+                    "folder (or a mesh of the build's meshes folder). Its bounding box replaces "
+                    "Particles/origin and box size; the packing's particles outside the volume are "
+                    "dropped; the band lies along its surface inside the domain. Empty: the box "
+                    "Particles/origin + box size.");
   prm.declare_entry("weight floor", "0.1", Double(0, 0.5),
                     "Smallest mass weight of either side in the band (0 < f < 0.5): keeps the "
                     "explicit step where one side's mass would vanish.");
@@ -114,8 +121,7 @@ coupling::CoupledCase parse_coupled_case(ParameterHandler& prm)
     if (sizes.size() == 2)
       throw dem::InputError("Coupling/far element size: give one value or three (x, y, z)");
     for (int d = 0; d < 3; ++d)
-      s.far_element_size[d] =
-          dealii::Utilities::string_to_double(sizes[sizes.size() == 1 ? 0 : d]);
+      s.far_element_size[d] = dealii::Utilities::string_to_double(sizes[sizes.size() == 1 ? 0 : d]);
     s.element_growth = prm.get_double("element growth");
   }
   if (s.band_element_size == 0)
@@ -128,6 +134,7 @@ coupling::CoupledCase parse_coupled_case(ParameterHandler& prm)
              : tensor == "measured"  ? coupling::TensorSource::measured
                                      : coupling::TensorSource::file;
   c.tensor_file = prm.get("tensor file");
+  c.region_file = prm.get("particle region file");
   if (c.tensor == coupling::TensorSource::file && c.tensor_file.empty())
     throw dem::InputError("Coupling/tensor file: continuum tensor = file needs an elasticity.json");
   s.tying = prm.get("tying") == "node" ? coupling::Tying::node : coupling::Tying::particle;

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <deal.II/base/multithread_info.h>
+#include <fstream>
 #include <sstream>
 #include <unistd.h>
 
@@ -33,9 +33,10 @@ std::string short_prm(const dealii::ParameterHandler& prm)
 /// Entries that name files; relative paths are relative to the case file's folder.
 bool is_path_entry(const std::vector<std::string>& sections, const std::string& key)
 {
-  const std::vector<std::string> particles{"Particles"}, mesh{"FEM", "Mesh"};
+  const std::vector<std::string> particles{"Particles"}, mesh{"FEM", "Mesh"}, coupling{"Coupling"};
   return (sections == particles && (key == "file" || key == "save file")) ||
-         (sections == mesh && key == "file");
+         (sections == mesh && key == "file") ||
+         (sections == coupling && (key == "tensor file" || key == "particle region file"));
 }
 
 /// Visits every "set" line of a short PRM text with its subsection path; @p line returns the
@@ -112,10 +113,16 @@ std::string parameters_file_text(const dealii::ParameterHandler& prm, const fs::
 void write_parameters_file(const dealii::ParameterHandler& prm, const fs::path& case_file,
                            const fs::path& file)
 {
-  const std::string header = "# The complete parameter set of a dembridge run (every entry, after --set),\n"
-                             "# written by dembridge " + version() + " (git commit " + git_commit() + ")\n"
-                             "# from " + fs::absolute(case_file).string() + "\n"
-                             "# Rerun: dembridge run " + file.filename().string() + "\n";
+  const std::string header =
+      "# The complete parameter set of a dembridge run (every entry, after --set),\n"
+      "# written by dembridge " +
+      version() + " (git commit " + git_commit() +
+      ")\n"
+      "# from " +
+      fs::absolute(case_file).string() +
+      "\n"
+      "# Rerun: dembridge run " +
+      file.filename().string() + "\n";
   std::ofstream out(file);
   out << parameters_file_text(prm, fs::absolute(case_file).parent_path(), header);
   if (!out)

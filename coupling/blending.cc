@@ -19,6 +19,10 @@ std::vector<int> find_interface_particles(const Handshake& h, const dem::Particl
   if (interface.empty())
     throw std::runtime_error("Coupling/band width: no particle centre lies in the handshake band "
                              "(no interface particles)");
+  if (interface.size() == p.size())
+    throw std::runtime_error("Coupling/band width: every particle centre lies in the handshake "
+                             "band (no particle-only region; narrow the band or enlarge the "
+                             "particle region)");
   return interface;
 }
 

@@ -3,9 +3,10 @@
 //
 // The user writes what a DEM case and an FE case would hold, plus the band:
 //   particles  the packing of the particle region: Particles/origin and box size are the
-//              particle box (the handshake band lies inside it, along its faces that are inside
-//              the FE domain), with its bonds, groups (a load point, a deflection probe) and
-//              loads (dem::CaseConfig);
+//              particle box, or the bounding box of a gmsh volume (Coupling/particle region file)
+//              whose particles alone are kept (the handshake band lies inside it, along its faces
+//              that are inside the FE domain), with its bonds, groups (a load point, a deflection
+//              probe) and loads (dem::CaseConfig);
 //   continuum  the FE domain (FEM/Mesh box), density, supports and loads (fem::Parameters).
 //              A support with a non-zero value is a prescribed displacement: it is driven from 0
 //              to its value along the ramp below (linear, or smooth 3 s^2 - 2 s^3), as a DEM
@@ -55,15 +56,24 @@ struct CoupledCase
   fem::Parameters continuum;
   CouplingSettings settings; ///< geometry and tensor are filled by make_coupled_problem
   TensorSource tensor = TensorSource::closed_form;
-  std::string tensor_file;      ///< for TensorSource::file (absolute or relative to the cwd)
-  double ramp_time = 0;         ///< s, driven boundaries
-  bool smooth_ramp = true;      ///< 3 s^2 - 2 s^3 instead of s
+  std::string tensor_file; ///< for TensorSource::file (absolute or relative to the cwd)
+  /// The particle region as a gmsh volume (region_volume.h; absolute, relative to the cwd or in
+  /// the build's meshes folder); empty: the box Particles/origin + box size. Its bounding box
+  /// becomes the packing's box, and only the particles inside it are kept.
+  std::string region_file;
+  double ramp_time = 0;    ///< s, driven boundaries
+  bool smooth_ramp = true; ///< 3 s^2 - 2 s^3 instead of s
   PulseConfig pulse;
 };
 
 /// The continuum's tensor (Pa, Voigt 6x6) for the case's packing and tensor source; throws
 /// std::runtime_error naming Coupling/continuum tensor when the source does not fit the packing.
 Voigt6x6 continuum_tensor(const CoupledCase& c);
+
+/// Makes @p region the particle region: the handshake's (its bounding box the particle box) and
+/// the packing's (its bounding box the packing's box; kept: the particles inside it).
+void set_particle_region(std::shared_ptr<const RegionVolume> region, HandshakeGeometry& g,
+                         dem::ParticleSource& packing);
 
 /// Fills the geometry and tensor, turns non-zero FE supports into driven boundaries, builds
 /// and sets up the problem and gives it its initial state (the pulse, or rest). Collective.

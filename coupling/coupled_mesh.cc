@@ -83,10 +83,23 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
       box, steps, Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
       Point<3>(g.domain_hi[0], g.domain_hi[1], g.domain_hi[2]));
   std::set<Triangulation<3>::active_cell_iterator> remove;
+  // A cell goes when its centre and its eight Gauss points lie in the particle-only region, where
+  // the continuum has neither stiffness (1 - alpha = 0) nor mass: a box's band planes are cell
+  // faces, so there the centre decides alone; a volume's band cuts cells, and a cell it cuts keeps
+  // mass at every node (Q1 shape values are positive at every Gauss point).
   for (const auto& cell : box.active_cell_iterators())
   {
     const Point<3> c = cell->center();
-    if (h.in_particle_only(Vec3(c[0], c[1], c[2])))
+    const Tensor<1, 3> half = 0.5 * (cell->vertex(7) - cell->vertex(0)); // axis-aligned cells
+    bool particle_only = h.in_particle_only(Vec3(c[0], c[1], c[2]));
+    for (int q = 0; q < 8 && particle_only; ++q)
+    {
+      Vec3 x(c[0], c[1], c[2]);
+      for (int d = 0; d < 3; ++d)
+        x[d] += ((q >> d) & 1 ? 1 : -1) * half[d] / std::sqrt(3.0);
+      particle_only = h.in_particle_only(x);
+    }
+    if (particle_only)
       remove.insert(cell);
   }
   if (removed)

@@ -2,10 +2,11 @@
 // Plain description of a DEM case, independent of how it was read (the app fills it from a
 // deal.II parameter file; tests and benchmarks fill it directly).
 #include "dem/bonds/bond_model.h"
-#include "dem/contacts/contact_config.h"
 #include "dem/bonds/bond_strength.h"
+#include "dem/contacts/contact_config.h"
 #include "dem/model/groups.h"
 #include "dem/model/loads.h"
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -42,6 +43,9 @@ struct ParticleSource
   /// A notch: particles whose centres lie inside [remove_box_min, remove_box_max] are removed
   /// before bonding (no removal while the box has no volume).
   Vec3 remove_box_min = Vec3::Zero(), remove_box_max = Vec3::Zero();
+  /// Only the particles whose centres it accepts are kept, after the porosity is measured on the
+  /// whole packing and before bonding: a coupled run's particle region of any shape. Empty: all.
+  std::function<bool(const Vec3&)> keep;
 };
 
 struct GroupConfig
@@ -108,9 +112,9 @@ struct CaseConfig
   std::vector<LoadConfig> loads;
   RunConfig run;
   MeasureConfig measure;
-  ContactConfig contacts;     ///< post-failure contacts (dem/contacts/); model none: off
+  ContactConfig contacts;        ///< post-failure contacts (dem/contacts/); model none: off
   std::vector<WallConfig> walls; ///< rigid planes, contact partners of the particles
-  DamageConfig damage; ///< bond strengths and failure law (dem/bonds/bond_strength.h)
+  DamageConfig damage;           ///< bond strengths and failure law (dem/bonds/bond_strength.h)
   /// Renumber particles and bonds into spatial order once built (dem/model/renumbering.h);
   /// false keeps the packing's own numbering (the tests compare the two).
   bool spatial_order = true;

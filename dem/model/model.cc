@@ -1,8 +1,8 @@
 #include "dem/model/model.h"
 #include "dem/bonds/bonding.h"
+#include "dem/contacts/contact_forces.h"
 #include "dem/model/load_checks.h"
 #include "dem/model/renumbering.h"
-#include "dem/contacts/contact_forces.h"
 #include "dem/packing/packings.h"
 #include <numbers>
 #include <sstream>
@@ -59,6 +59,12 @@ Model build_model(const CaseConfig& c)
   generate_particles(c.particles, m.particles);
   auto& p = m.particles;
   set_porosity(c.particles, m);
+  if (c.particles.keep)
+  {
+    keep_particles(p, c.particles.keep);
+    if (p.size() == 0)
+      throw InputError("Particles: the particle region holds no particle centre of the packing");
+  }
 
   c.bonds.material.validate("Bonds");
   if (c.bonds.explicit_bonds.empty())

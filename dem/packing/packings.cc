@@ -61,23 +61,30 @@ void remove_notch(const ParticleSource& s, ParticleStore& p)
     return;
   if (!(hi.array() > lo.array()).all())
     throw InputError("Particles/remove box max: must exceed 'remove box min' in every component");
+  const std::size_t before = p.size();
+  keep_particles(p, [&](const Vec3& x)
+                 { return !((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()); });
+  if (p.size() == before)
+    throw InputError("Particles/remove box min: the remove box holds no particle centre");
+  if (p.size() == 0)
+    throw InputError("Particles/remove box min: the remove box holds every particle");
+}
+} // namespace
+
+void keep_particles(ParticleStore& p, const std::function<bool(const Vec3&)>& keep)
+{
   ParticleStore kept;
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     const Vec3& x = p.position[i];
-    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all())
+    if (!keep(x))
       continue;
     kept.add(x, p.radius[i], 1.0);
     kept.set_mass(kept.size() - 1, p.mass[i]);
     kept.reference_position.back() = p.reference_position[i];
   }
-  if (kept.size() == p.size())
-    throw InputError("Particles/remove box min: the remove box holds no particle centre");
-  if (kept.size() == 0)
-    throw InputError("Particles/remove box min: the remove box holds every particle");
   p = std::move(kept);
 }
-} // namespace
 
 namespace
 {
@@ -99,7 +106,9 @@ std::array<int, 4> header_columns(const std::string& line, const std::string& wh
   {
     name = lower(name);
     const std::string known = "xyzr";
-    const auto k = name == "radius" ? 3 : name.size() == 1 ? known.find(name[0]) : std::string::npos;
+    const auto k = name == "radius"   ? 3
+                   : name.size() == 1 ? known.find(name[0])
+                                      : std::string::npos;
     if (k == std::string::npos)
       throw InputError(where + ": unknown column '" + name +
                        "' in the header (expected x, y, z and r, in any order)");

@@ -8,14 +8,17 @@
 //    starts a comment; the first line that is no comment may be a header naming the columns
 //    x, y, z, r (or radius) in any order). Spheres that overlap by more than max_file_overlap
 //    of the smaller radius are refused.
-#include "dem/model/case_config.h"
 #include "dem/core/particle_store.h"
+#include "dem/model/case_config.h"
 #include <istream>
 
 namespace dembridge::dem
 {
 /// Fills `p` from the source; throws InputError (naming Particles/...) on bad input.
 void generate_particles(const ParticleSource& src, ParticleStore& p);
+
+/// Keeps the particles whose centres @p keep accepts (their masses and reference positions).
+void keep_particles(ParticleStore& p, const std::function<bool(const Vec3&)>& keep);
 
 /// Largest overlap r_i + r_j - |x_i - x_j| a particle file may hold, relative to the smaller
 /// radius (a random packing saved by this code overlaps by at most 1e-4).
