@@ -1,5 +1,6 @@
 // The full-DEM and full-FE models of a coupled case (see full_models.h).
 #include "coupling/full_models.h"
+#include "coupling/region_volume.h"
 #include "dem/measurements/elasticity_tensor.h"
 #include "dem/model/model.h"
 #include <algorithm>
@@ -64,6 +65,15 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
       is_lattice(src.kind) ? dem::lattice_axis_periods(src.kind, src.radius) : Vec3::Zero();
   const Vec3 lo = to_vec(fe.box_lower), hi = to_vec(fe.box_upper);
   const double r = src.radius;
+  // the packing's box: a volume region's bounding box (set_particle_region), where the coupled
+  // run anchors its lattice
+  Vec3 src_origin = src.origin, src_size = src.box_size;
+  if (!c.region_file.empty() && !c.settings.geometry.region)
+  {
+    const auto region = read_region_volume(c.region_file, "Coupling/particle region file");
+    src_origin = region.lo();
+    src_size = region.hi() - region.lo();
+  }
   if (is_lattice(src.kind))
   {
     // Whole lattice periods to either side, so that the region's particles keep their places;
@@ -72,7 +82,7 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
     layout.same_packing = true;
     for (int d = 0; d < 3; ++d)
     {
-      const double P = period[d], o = src.origin[d], end = o + src.box_size[d];
+      const double P = period[d], o = src_origin[d], end = o + src_size[d];
       const double below = std::max(0.0, std::floor((o - (lo[d] - r)) / P + 1e-9));
       const double above = std::max(0.0, std::floor((hi[d] + r - end) / P + 1e-9));
       layout.origin[d] = o - below * P;
@@ -171,6 +181,7 @@ FullDemLayout full_dem_layout(const CoupledCase& c)
 dem::CaseConfig full_dem_case(const CoupledCase& c, const FullDemLayout& layout)
 {
   dem::CaseConfig full = c.particles;
+  full.particles.keep = nullptr; // the whole specimen, not the coupled run's region
   full.particles.origin = layout.origin;
   full.particles.box_size = layout.box_size;
   full.run.mass_damping = layout.mass_damping;
