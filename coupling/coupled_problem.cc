@@ -411,10 +411,13 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
         lead_q_ += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
       }
     }
-  // the FE nodes take -G^T q
-  transfer_.spread(q_, slots_force_);
-  for (auto& f : slots_force_)
-    f = -f;
+  // the FE nodes take -G^T q (= -M y after a factorised solve: no spread)
+  if (!multipliers_.slot_reaction(slots_force_))
+  {
+    transfer_.spread(q_, slots_force_);
+    for (auto& f : slots_force_)
+      f = -f;
+  }
   fe_force_ = 0;
   transfer_.scatter_add(slots_force_, fe_force_);
   fe_->apply_force(fe_force_, dt);

@@ -77,18 +77,32 @@ public:
   const std::vector<double>& lumped_diagonal() const { return diagonal_; }
   /// Largest relative residual |A x - b| / |b| of the last solve (0 for a lumped solve).
   double last_residual() const { return residual_; }
+  /// After a factorised solve: the FE nodes' force -G^T q at the slots, from
+  /// G^T q = M y (multipliers.cc), so that no spread of q is needed; false otherwise (the
+  /// caller spreads q itself).
+  bool slot_reaction(std::vector<double>& slots) const;
 
 private:
   void apply_constraint_matrix(const std::vector<double>& x, std::vector<double>& y);
   void factorise();
   void solve_factorised(const std::vector<double>& b, std::vector<double>& q);
+  void solve_blocks();
 
   /// The slots' matrix A_c of the Woodbury form of S^-1 per component, factorised (one
   /// process, particle tying, exact solve; multipliers.cc).
   using Sparse = Eigen::SparseMatrix<double>;
-  static constexpr std::size_t dense_slots = 2000; ///< up to this many slots: a dense factor
+  static constexpr std::size_t dense_slots = 2000; ///< up to this many slots: dense inverses
   bool factorised_ = false;
-  std::array<Eigen::LLT<Eigen::MatrixXd>, 3> dense_;
+  /// A_c^-1 of one connected group of slots (the bands of a region are separate groups), dense
+  /// (symmetric: rows and columns alike): y = A^-1 r is then one matrix-vector product per step.
+  struct DenseBlock
+  {
+    std::vector<unsigned int> slots;
+    std::vector<double> inverse;
+  };
+  std::array<std::vector<DenseBlock>, 3> blocks_;
+  bool any_fixed_slot_ = false;             ///< some slot component does not move
+  std::vector<double> block_rhs_, block_y_; ///< work, 3 x largest block (SoA)
   std::array<std::unique_ptr<Eigen::SimplicialLLT<Sparse>>, 3> factor_;
   bool shared_factor_ = false; ///< one factor for the three components
   Eigen::MatrixXd rhs_, sol_;  ///< n_slots x 3 (shared factor) or n_slots x 1
@@ -103,5 +117,6 @@ private:
   double residual_ = 0;
   // work vectors (sized once)
   std::vector<double> slots_, slots2_, points_, Sq_, b_, x_, r_, z_, p_, Ap_;
+  std::vector<double> y_slots_; ///< y of the last factorised solve (slot_reaction)
 };
 } // namespace dembridge::coupling

@@ -187,16 +187,20 @@ void PointTransfer::assemble(std::vector<double>& slots) const
 
 void PointTransfer::interpolate(const std::vector<double>& slots, std::vector<double>& points) const
 {
-  points.assign(3 * n_points_, 0.0);
+  points.resize(3 * n_points_);
   for (std::size_t p = 0; p < n_points_; ++p)
+  {
+    double x = 0, y = 0, z = 0; // in registers: points and slots may alias for the compiler
     for (unsigned int k = row_ptr_[p]; k < row_ptr_[p + 1]; ++k)
     {
       const double N = row_value_[k];
       const double* s = &slots[3 * row_slot_[k]];
-      points[3 * p] += N * s[0];
-      points[3 * p + 1] += N * s[1];
-      points[3 * p + 2] += N * s[2];
+      x += N * s[0];
+      y += N * s[1];
+      z += N * s[2];
     }
+    points[3 * p] = x, points[3 * p + 1] = y, points[3 * p + 2] = z;
+  }
   if (parallel_)
     MPI_Allreduce(MPI_IN_PLACE, points.data(), int(points.size()), MPI_DOUBLE, MPI_SUM, comm_);
 }
