@@ -29,8 +29,10 @@
 //           approximately each step, the gap term carries the rest into the next step;
 //   exact   on one process with particle tying: S is constant (fixed G and masses); its
 //           inverse is applied through the Woodbury identity on the slots (multipliers.cc),
-//           whose small matrix is factorised once (Cholesky, dense up to 2000 slots); each step is
-//           a spread, one pair of triangular solves over the slots and an interpolation. Otherwise
+//           whose small matrix is inverted once per connected group of slots (dense up to 2000
+//           slots, else a sparse Cholesky factor); each step is a spread, one matrix-vector
+//           product per group and an interpolation, and the FE nodes' share -G^T q = -M y needs
+//           no second spread. Otherwise
 //           conjugate gradients on A, the lumped diagonal as preconditioner, to a relative residual
 //           `tolerance` (a few iterations: A is dominated by its particle-mass diagonal). On the
 //           bending beam's 600 interface particles the factorised solve takes 8 % of the run where
