@@ -10,7 +10,7 @@ UniformGrid::UniformGrid(const Vec3& lo, const Vec3& hi, const double cell_size)
   for (int d = 0; d < 3; ++d)
   {
     const double length = std::max(hi[d] - lo[d], 1e-300);
-    n_[d] = std::clamp(int(std::ceil(length / cell_size)), 1, 128);
+    n_[d] = int(std::clamp(std::ceil(length / cell_size), 1.0, 128.0)); // in double: no overflow
     inverse_size_[d] = n_[d] / length;
   }
   cells_.resize(std::size_t(n_[0]) * n_[1] * n_[2]);
@@ -19,8 +19,8 @@ UniformGrid::UniformGrid(const Vec3& lo, const Vec3& hi, const double cell_size)
 std::array<int, 3> UniformGrid::cell_of(const Vec3& x) const
 {
   std::array<int, 3> c{};
-  for (int d = 0; d < 3; ++d)
-    c[d] = int(std::floor((x[d] - lo_[d]) * inverse_size_[d]));
+  for (int d = 0; d < 3; ++d) // clamped to one cell beyond either end before the cast
+    c[d] = int(std::clamp(std::floor((x[d] - lo_[d]) * inverse_size_[d]), -1.0, double(n_[d])));
   return c;
 }
 
