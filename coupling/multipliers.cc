@@ -198,7 +198,6 @@ void MultiplierSolver::solve_factorised(const std::vector<double>& b, std::vecto
             slots_[3 * k + d] = sol_(long(k), shared_factor_ ? d : 0);
       }
     }
-  y_slots_ = slots_;
   G_->interpolate(slots_, points_);
   for (std::size_t p = 0; p < n; ++p)
     for (int c = 0; c < 3; ++c)
@@ -255,9 +254,9 @@ bool MultiplierSolver::slot_reaction(std::vector<double>& slots) const
   // components that move (A y = G^T D^-1 b there); a fixed component needs the spread
   if (!factorised_ || any_fixed_slot_ || G_->parallel())
     return false;
-  slots.resize(y_slots_.size());
-  for (std::size_t k = 0; k < y_slots_.size(); ++k)
-    slots[k] = -y_slots_[k] / inv_M_[k];
+  slots.resize(slots_.size()); // slots_ still holds y: nothing since solve() has used it
+  for (std::size_t k = 0; k < slots_.size(); ++k)
+    slots[k] = -slots_[k] / inv_M_[k];
   return true;
 }
 

@@ -79,7 +79,8 @@ public:
   const std::vector<double>& lumped_diagonal() const { return diagonal_; }
   /// Largest relative residual |A x - b| / |b| of the last solve (0 for a lumped solve).
   double last_residual() const { return residual_; }
-  /// After a factorised solve: the FE nodes' force -G^T q at the slots, from
+  /// After a factorised solve (and before the next call of solve or apply_schur, which reuse
+  /// the slot work vector that holds y): the FE nodes' force -G^T q at the slots, from
   /// G^T q = M y (multipliers.cc), so that no spread of q is needed; false otherwise (the
   /// caller spreads q itself).
   bool slot_reaction(std::vector<double>& slots) const;
@@ -119,6 +120,5 @@ private:
   double residual_ = 0;
   // work vectors (sized once)
   std::vector<double> slots_, slots2_, points_, Sq_, b_, x_, r_, z_, p_, Ap_;
-  std::vector<double> y_slots_; ///< y of the last factorised solve (slot_reaction)
 };
 } // namespace dembridge::coupling

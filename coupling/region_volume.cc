@@ -65,11 +65,20 @@ RegionVolume::RegionVolume(std::vector<Tetrahedron> tetrahedra, std::vector<Tria
   }
   if (!(volume_ > 0))
     throw std::runtime_error(key + ": the mesh's volume is zero");
+  to_barycentric_.reserve(tets_.size());
+  for (const auto& t : tets_)
+  {
+    Eigen::Matrix3d J;
+    J << t[1] - t[0], t[2] - t[0], t[3] - t[0];
+    to_barycentric_.push_back(J.inverse()); // a flat one: not finite, left out of the grid
+  }
   // cells of about two tetrahedron sizes: a few tetrahedra listed per cell
   const double size = 2 * std::cbrt(6 * volume_ / double(tets_.size()));
   grid_ = UniformGrid(lo_, hi_, size);
   for (std::size_t k = 0; k < tets_.size(); ++k)
   {
+    if (!to_barycentric_[k].allFinite())
+      continue;
     Vec3 a = tets_[k][0], b = tets_[k][0];
     for (const auto& v : tets_[k])
       a = a.cwiseMin(v), b = b.cwiseMax(v);
@@ -82,10 +91,7 @@ bool RegionVolume::contains(const Vec3& x) const
 {
   for (const int k : grid_.items_at(x))
   {
-    const auto& t = tets_[k];
-    Eigen::Matrix3d J;
-    J << t[1] - t[0], t[2] - t[0], t[3] - t[0];
-    const Vec3 l = J.partialPivLu().solve(x - t[0]);
+    const Vec3 l = to_barycentric_[k] * (x - tets_[k][0]);
     const double tol = 1e-9;
     if (l.minCoeff() >= -tol && l.sum() <= 1 + tol)
       return true;

@@ -66,6 +66,8 @@ public:
 
 private:
   std::vector<Tetrahedron> tets_;
+  /// per tetrahedron the inverse of [v1 - v0, v2 - v0, v3 - v0]: barycentric coordinates
+  std::vector<Eigen::Matrix3d> to_barycentric_;
   std::vector<Triangle> boundary_;
   Vec3 lo_ = Vec3::Zero(), hi_ = Vec3::Zero();
   double volume_ = 0;

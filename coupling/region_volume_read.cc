@@ -4,11 +4,9 @@
 #include "coupling/region_volume.h"
 #include "fem/mesh.h"
 
-#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace dembridge::coupling
@@ -40,28 +38,11 @@ RegionVolume read_region_volume(const std::string& name, const std::string& key)
     file = fem::resolve_mesh_file(name);
     std::ifstream sections(file);
     fem::check_msh_sections(sections, file);
+    fem::read_msh_file(file, tria, "gmsh volume mesh");
   }
   catch (const std::exception& e)
   {
     throw rekeyed(e, key);
-  }
-  try
-  {
-    std::ifstream in(file);
-    dealii::GridIn<3> grid_in;
-    grid_in.attach_triangulation(tria);
-    grid_in.read_msh(in);
-  }
-  catch (const std::exception& e)
-  {
-    // deal.II messages span lines; keep the line that says what went wrong
-    std::istringstream lines(e.what());
-    std::string line, reason;
-    while (std::getline(lines, line))
-      if (line.find("Additional information") != std::string::npos)
-        std::getline(lines, reason);
-    throw std::runtime_error(key + ": cannot read '" + file + "' as a gmsh volume mesh" +
-                             (reason.empty() ? "" : ": " + reason));
   }
   std::vector<Tetrahedron> tets;
   std::vector<Triangle> boundary;

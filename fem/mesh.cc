@@ -267,31 +267,36 @@ BoundaryNames make_mesh(const Parameters& p, dealii::parallel::distributed::Tria
       check_msh_sections(sections, file);
     }
     names = read_physical_names(file);
-    std::ifstream in(file);
-    dealii::GridIn<3> grid_in;
-    grid_in.attach_triangulation(tria);
-    try
-    {
-      grid_in.read_msh(in);
-    }
-    catch (const std::exception& e)
-    {
-      std::string what = e.what();
-      // deal.II messages span lines; keep the line that says what went wrong.
-      std::istringstream lines(what);
-      std::string line, reason;
-      while (std::getline(lines, line))
-        if (line.find("Additional information") != std::string::npos)
-          std::getline(lines, reason);
-      throw std::runtime_error("FEM/Mesh/file: cannot read '" + file +
-                               "' as a hexahedral gmsh mesh" +
-                               (reason.empty() ? "" : ": " + reason));
-    }
+    read_msh_file(file, tria, "hexahedral gmsh mesh");
   }
   check_refined_mesh_fits(p, double(tria.n_global_active_cells()));
   tria.refine_global(p.refinements);
   apply_patches(p.patches, tria, names);
   return names;
+}
+
+void read_msh_file(const std::string& file, dealii::Triangulation<3>& tria,
+                   const std::string& description)
+{
+  std::ifstream in(file);
+  dealii::GridIn<3> grid_in;
+  grid_in.attach_triangulation(tria);
+  try
+  {
+    grid_in.read_msh(in);
+  }
+  catch (const std::exception& e)
+  {
+    std::string what = e.what();
+    // deal.II messages span lines; keep the line that says what went wrong.
+    std::istringstream lines(what);
+    std::string line, reason;
+    while (std::getline(lines, line))
+      if (line.find("Additional information") != std::string::npos)
+        std::getline(lines, reason);
+    throw std::runtime_error("FEM/Mesh/file: cannot read '" + file + "' as a " + description +
+                             (reason.empty() ? "" : ": " + reason));
+  }
 }
 
 dealii::types::boundary_id find_boundary(const BoundaryNames& names, const std::string& name,

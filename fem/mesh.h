@@ -46,4 +46,9 @@ BoundaryNames read_physical_names(std::istream& in, const std::string& file);
 /// throws std::runtime_error naming FEM/Mesh/file, @p file and the line otherwise.
 void check_msh_sections(std::istream& in, const std::string& file);
 
+/// deal.II's read_msh of @p file (checked first with check_msh_sections) into @p tria; throws
+/// std::runtime_error "FEM/Mesh/file: cannot read 'FILE' as a DESCRIPTION: <deal.II's reason>".
+void read_msh_file(const std::string& file, dealii::Triangulation<3>& tria,
+                   const std::string& description);
+
 } // namespace dembridge::fem
