@@ -5,13 +5,17 @@
 // the scalar kernel computes for its bond, up to the compiler's fused multiply-adds), and leave
 // the contact forces in a lane-major block; the caller scatters them to the particles one bond
 // at a time (two bonds of a block often share a particle, so the scatter cannot be a vector
-// store). Bonds past the end of a range (m < W) repeat the block's first bond and are ignored.
+// store). Bonds past the end of a range (m < W) repeat its last bond and are ignored.
 #include "dem/bonds/bond_kernel.h"
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 namespace dembridge::dem
 {
@@ -55,6 +59,10 @@ struct alignas(64) BondBlock
   static constexpr int W = bond_block_width;
   double Fc[3][W], Mc[3][W], Fd[3][W], Md[3][W], e[3][W];
   double ra[W], rb[W], strain_energy[W];
+  /// The particle resultants' moments (bond_resultants): Ma = -Mc - ra e x Fc on a and
+  /// Mb = Mc + rb e x Fc on b, and the same of the dashpot parts (zero without dashpots), so
+  /// that the scatter only adds (the forces are -Fc on a and Fc on b).
+  double Ma[3][W], Mb[3][W], Mda[3][W], Mdb[3][W];
 
   /// Lane j as the scalar kernel's output.
   void lane(int j, BondForces& f) const
@@ -68,6 +76,54 @@ struct alignas(64) BondBlock
   }
 };
 
+/// rows[d][j] = data[n * index[j] + d] for d < n, j < W: the records (3 or 4 doubles) of W
+/// particles turned into n lane-major rows. Writes 4 rows; for n = 3 the fourth holds junk and
+/// is overwritten by the caller's next gather (bond_law_block). With AVX-512 each record is one
+/// (masked) vector load and the 8 x 4 transpose is done in registers (why: 8 scalar loads and
+/// stores per row were half of the block's time); otherwise, or for another W, scalar copies.
+template <int W, int n>
+[[gnu::always_inline]] inline void gather_rows(const double* data, const std::int32_t* index,
+                                               double (*rows)[W])
+{
+  static_assert(n == 3 || n == 4);
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  if constexpr (W == 8)
+  {
+    auto load = [&](int j)
+    {
+      const double* p = data + std::size_t(n) * std::size_t(index[j]);
+      // masked for n = 3: the fourth double may lie past the array's end (no fault, no read)
+      if constexpr (n == 3)
+        return _mm256_maskz_loadu_pd(0x7, p);
+      else
+        return _mm256_loadu_pd(p);
+    };
+    auto pair = [&](int j) // lane j in the low half, lane j + 4 in the high half
+    { return _mm512_insertf64x4(_mm512_castpd256_pd512(load(j)), load(j + 4), 1); };
+    const __m512d z0 = pair(0), z1 = pair(1), z2 = pair(2), z3 = pair(3);
+    const __m512d t0 = _mm512_unpacklo_pd(z0, z1); // r0c0 r1c0 r0c2 r1c2 | r4c0 r5c0 r4c2 r5c2
+    const __m512d t1 = _mm512_unpackhi_pd(z0, z1); // the same with c1, c3
+    const __m512d t2 = _mm512_unpacklo_pd(z2, z3); // r2c0 r3c0 r2c2 r3c2 | r6c0 r7c0 ...
+    const __m512d t3 = _mm512_unpackhi_pd(z2, z3);
+    const __m512i even = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
+    const __m512i odd = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+    _mm512_store_pd(rows[0], _mm512_permutex2var_pd(t0, even, t2));
+    _mm512_store_pd(rows[1], _mm512_permutex2var_pd(t1, even, t3));
+    _mm512_store_pd(rows[2], _mm512_permutex2var_pd(t0, odd, t2));
+    _mm512_store_pd(rows[3], _mm512_permutex2var_pd(t1, odd, t3));
+    return;
+  }
+#endif
+  for (int j = 0; j < W; ++j)
+  {
+    std::size_t i = std::size_t(index[j]);
+    asm("" : "+r"(i)); // keeps this loop scalar (no emulated gathers)
+    const double* p = data + std::size_t(n) * i;
+    for (int d = 0; d < n; ++d)
+      rows[d][j] = p[d];
+  }
+}
+
 /// Evaluates bonds k0 .. k0 + m - 1 (m <= W) into @p out.
 template <bool dashpots>
 inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondBlock& out)
@@ -78,32 +134,27 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
   const double *L0 = in.L0 + k0, *kn = in.kn + k0, *ks = in.ks + k0, *ktor = in.ktor + k0;
   const double *kben = in.kben + k0, *s = in.s + k0, *ct = in.ct + k0, *cr = in.cr + k0;
   E0 += 3 * k0;
-  // Gather: the particle data of the block's bonds into lane-major rows (scalar loads: the
-  // vectoriser's own gathers, emulated or vgatherdpd, measured slower on this CPU).
-  constexpr int n_rows = dashpots ? 26 : 14;
+  // Gather: the particle data of the block's bonds into lane-major rows.
+  constexpr int n_rows = dashpots ? 27 : 14; // one spare row: gather_rows writes 4 per Vec3
   alignas(64) double g[n_rows][W];
+  std::int32_t ia[W], ib[W];
   for (int j = 0; j < W; ++j)
   {
-    const std::size_t k = std::size_t(std::min(j, m - 1));
-    std::size_t ia = std::size_t(A[k]), ib = std::size_t(B[k]);
-    asm("" : "+r"(ia), "+r"(ib)); // keeps this loop scalar (no emulated gathers)
-    const double* xa = X + 3 * ia;
-    const double* xb = X + 3 * ib;
-    const double* qa = Q + 4 * ia;
-    const double* qb = Q + 4 * ib;
-    for (int d = 0; d < 3; ++d)
-      g[d][j] = xa[d], g[3 + d][j] = xb[d];
-    for (int d = 0; d < 4; ++d)
-      g[6 + d][j] = qa[d], g[10 + d][j] = qb[d];
-    if constexpr (dashpots)
-    {
-      const double* va = V + 3 * ia;
-      const double* vb = V + 3 * ib;
-      const double* wa = Wv + 3 * ia;
-      const double* wb = Wv + 3 * ib;
-      for (int d = 0; d < 3; ++d)
-        g[14 + d][j] = va[d], g[17 + d][j] = vb[d], g[20 + d][j] = wa[d], g[23 + d][j] = wb[d];
-    }
+    const int k = std::min(j, m - 1);
+    ia[j] = A[k], ib[j] = B[k];
+  }
+  // Rows in this order, so that each Vec3's spare fourth row is overwritten by the next
+  // quantity: xa 0-2, xb 3-5, qa 6-9, qb 10-13, va 14-16, vb 17-19, wa 20-22, wb 23-25.
+  gather_rows<W, 3>(X, ia, g + 0);
+  gather_rows<W, 3>(X, ib, g + 3);
+  gather_rows<W, 4>(Q, ia, g + 6);
+  gather_rows<W, 4>(Q, ib, g + 10);
+  if constexpr (dashpots)
+  {
+    gather_rows<W, 3>(V, ia, g + 14);
+    gather_rows<W, 3>(V, ib, g + 17);
+    gather_rows<W, 3>(Wv, ia, g + 20);
+    gather_rows<W, 3>(Wv, ib, g + 23);
   }
 #pragma GCC ivdep
   for (int j = 0; j < W; ++j)
@@ -129,6 +180,23 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
     out.Md[0][j] = f.Md[0], out.Md[1][j] = f.Md[1], out.Md[2][j] = f.Md[2];
     out.e[0][j] = f.e[0], out.e[1][j] = f.e[1], out.e[2][j] = f.e[2];
     out.ra[j] = f.ra, out.rb[j] = f.rb, out.strain_energy[j] = f.strain_energy;
+    // the resultants' moments, as bond_resultants forms them
+    const double cx = f.e[1] * f.Fc[2] - f.e[2] * f.Fc[1], cy = f.e[2] * f.Fc[0] - f.e[0] * f.Fc[2],
+                 cz = f.e[0] * f.Fc[1] - f.e[1] * f.Fc[0];
+    out.Ma[0][j] = -f.Mc[0] - f.ra * cx, out.Ma[1][j] = -f.Mc[1] - f.ra * cy;
+    out.Ma[2][j] = -f.Mc[2] - f.ra * cz;
+    out.Mb[0][j] = f.Mc[0] + f.rb * cx, out.Mb[1][j] = f.Mc[1] + f.rb * cy;
+    out.Mb[2][j] = f.Mc[2] + f.rb * cz;
+    if constexpr (dashpots)
+    {
+      const double dx = f.e[1] * f.Fd[2] - f.e[2] * f.Fd[1],
+                   dy = f.e[2] * f.Fd[0] - f.e[0] * f.Fd[2],
+                   dz = f.e[0] * f.Fd[1] - f.e[1] * f.Fd[0];
+      out.Mda[0][j] = -f.Md[0] - f.ra * dx, out.Mda[1][j] = -f.Md[1] - f.ra * dy;
+      out.Mda[2][j] = -f.Md[2] - f.ra * dz;
+      out.Mdb[0][j] = f.Md[0] + f.rb * dx, out.Mdb[1][j] = f.Md[1] + f.rb * dy;
+      out.Mdb[2][j] = f.Md[2] + f.rb * dz;
+    }
   }
 }
 } // namespace dembridge::dem

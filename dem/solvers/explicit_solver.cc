@@ -68,8 +68,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     dashpots_ = dashpots_ || b_.damping_force[k] > 0 || b_.damping_moment[k] > 0;
   if (dashpots_)
   {
-    dashpot_force_.assign(p_.size(), Vec3::Zero());
-    dashpot_torque_.assign(p_.size(), Vec3::Zero());
+    dashpot_.assign(p_.size(), DashpotResultant{});
   }
   // energy_.initial is set by the first step, from the leapfrog state at t_0 (integrate())
 }
@@ -86,9 +85,9 @@ void ExplicitSolver::partition_bonds()
 std::size_t ExplicitSolver::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  std::size_t n = bytes(dashpot_force_) + bytes(dashpot_torque_) + bytes(constrained_) +
-                  bytes(prescribed_v_) + bytes(prescribed_w_) + bytes(constrained_v_) +
-                  bytes(constrained_w_) + bytes(constrained_reaction_) + bytes(cracks_);
+  std::size_t n = bytes(dashpot_) + bytes(constrained_) + bytes(prescribed_v_) +
+                  bytes(prescribed_w_) + bytes(constrained_v_) + bytes(constrained_w_) +
+                  bytes(constrained_reaction_) + bytes(cracks_);
   for (const auto& buffer : crack_buffers_)
     n += bytes(buffer);
   return n;
@@ -104,8 +103,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   [[maybe_unused]] const Vec3* w = p_.angular_velocity.data();
   Vec3* F = p_.force.data();
   Vec3* M = p_.torque.data();
-  Vec3* Fd = dashpot_force_.data();
-  Vec3* Md = dashpot_torque_.data();
+  DashpotResultant* D = dashpot_.data();
   [[maybe_unused]] const FailureLaw& law = b_.failure;
   [[maybe_unused]] const double dt = settings_.time_step;
   const BondLawArrays arrays(p_, b_);
@@ -126,7 +124,8 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
       else if (b_.state[k] == BondState::broken)
         continue;
       const int ia = b_.a[k], ib = b_.b[k];
-      block.lane(j, f);
+      if constexpr (record || failure != FailureMode::none)
+        block.lane(j, f);
       [[maybe_unused]] double carried = 1.0; // 1 - D
       if constexpr (failure != FailureMode::none)
       {
@@ -210,9 +209,20 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
             f.Fd[d] *= carried, f.Md[d] *= carried;
           }
       }
-      bond_resultants(f.Fc, f.Mc, f, F[ia].data(), M[ia].data(), F[ib].data(), M[ib].data());
+      // the particle resultants (bond_resultants, formed in the block's lanes), times 1 - D
+      for (int d = 0; d < 3; ++d)
+      {
+        const double Fc = carried * block.Fc[d][j];
+        F[ia][d] -= Fc, M[ia][d] += carried * block.Ma[d][j];
+        F[ib][d] += Fc, M[ib][d] += carried * block.Mb[d][j];
+      }
       if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
-        bond_resultants(f.Fd, f.Md, f, Fd[ia].data(), Md[ia].data(), Fd[ib].data(), Md[ib].data());
+        for (int d = 0; d < 3; ++d)
+        {
+          const double Fdc = carried * block.Fd[d][j];
+          D[ia].force[d] -= Fdc, D[ia].torque[d] += carried * block.Mda[d][j];
+          D[ib].force[d] += Fdc, D[ib].torque[d] += carried * block.Mdb[d][j];
+        }
       if constexpr (record)
       {
         if constexpr (failure == FailureMode::none)
@@ -450,13 +460,12 @@ template <bool record> void ExplicitSolver::integrate()
     if (dashpots_)
     {
       // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
-      const Vec3& fd = dashpot_force_[i];
-      const Vec3& md = dashpot_torque_[i];
+      const Vec3& fd = dashpot_[i].force;
+      const Vec3& md = dashpot_[i].torque;
       dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
       if constexpr (record)
         lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
-      dashpot_force_[i].setZero();
-      dashpot_torque_[i].setZero();
+      dashpot_[i] = DashpotResultant{};
     }
     v[i] = v1;
     w[i] = w1;
@@ -520,13 +529,29 @@ template <bool record> void ExplicitSolver::integrate()
   }
 }
 
+std::vector<Vec3> ExplicitSolver::dashpot_forces() const
+{
+  std::vector<Vec3> out(p_.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < dashpot_.size(); ++i)
+    out[i] = dashpot_[i].force;
+  return out;
+}
+
+std::vector<Vec3> ExplicitSolver::dashpot_torques() const
+{
+  std::vector<Vec3> out(p_.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < dashpot_.size(); ++i)
+    out[i] = dashpot_[i].torque;
+  return out;
+}
+
 void ExplicitSolver::evaluate_bond_forces()
 {
   for (std::size_t i = 0; i < p_.size(); ++i)
   {
     p_.force[i].setZero(), p_.torque[i].setZero();
     if (dashpots_)
-      dashpot_force_[i].setZero(), dashpot_torque_[i].setZero();
+      dashpot_[i] = DashpotResultant{};
   }
   dashpots_ ? compute_bond_forces<true, true, FailureMode::none>()
             : compute_bond_forces<true, false, FailureMode::none>();

@@ -60,8 +60,8 @@ public:
   /// bond's contact force and couple. For tests and tools (the optimised loop against
   /// bond_kernel.h); failure laws are not applied.
   void evaluate_bond_forces();
-  const std::vector<Vec3>& dashpot_forces() const { return dashpot_force_; }
-  const std::vector<Vec3>& dashpot_torques() const { return dashpot_torque_; }
+  std::vector<Vec3> dashpot_forces() const;
+  std::vector<Vec3> dashpot_torques() const;
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -136,7 +136,13 @@ private:
   EnergyBalance energy_;
   double damping_work_ = 0; ///< running damping work, half a step ahead (see integrate)
   bool dashpots_ = false;   ///< any bond with a dashpot
-  std::vector<Vec3> dashpot_force_, dashpot_torque_; ///< dashpot resultants per particle
+  /// The bond dashpots' resultants on a particle, force and torque side by side (why: the
+  /// scatter of a bond then touches one line per particle instead of two arrays' lines)
+  struct DashpotResultant
+  {
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  };
+  std::vector<DashpotResultant> dashpot_; ///< per particle
   double max_speed_ = 0;
   double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
   double unbalanced_ratio_ = 0;
