@@ -219,21 +219,15 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
   const char* key = prm.get_double({"Output"}, "checkpoint interval") > 0
                         ? "Output/checkpoint interval"
                         : "Output/checkpoint wall interval";
-  if (mode == "fem")
-  {
-    // why: an FE run would ignore the interval and leave no checkpoint to resume
-    if (s.resume)
-      throw InputError("--resume: only DEM and coupled runs (Mode = dem | coupled) are "
-                       "checkpointed, this is a fem run");
-    if (asked)
-      throw InputError(s.case_name + ": " + key + ": only DEM and coupled runs (Mode = dem | " +
-                       "coupled) are checkpointed, this is a fem run");
-    return s;
-  }
-  // why: a coupled run's continuum is split over the ranks; each DEM process runs it all
+  if (mode == "fem" && prm.get({"FEM"}, "problem") == "static" && (s.resume || asked))
+    // why: one solve, no steps; refused rather than run without the checkpoints asked for
+    throw InputError(s.case_name + ": " + (s.resume ? "--resume" : key) +
+                     ": a static FE run (FEM/problem = static) has no time steps to checkpoint "
+                     "(FE dynamics, DEM and coupled runs are checkpointed)");
+  // why: a continuum (coupled or FE run) is split over the ranks; each DEM process runs it all
   const bool mpi = dealii::Utilities::MPI::job_supports_mpi();
   const bool root = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  if (mode == "coupled" && mpi)
+  if ((mode == "coupled" || mode == "fem") && mpi)
     s.ranks = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());

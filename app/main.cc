@@ -25,6 +25,9 @@
 #endif
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <deal.II/base/mpi.h>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +68,35 @@ std::string usage_error(CLI::App& app, int argc, char** argv, const std::string&
   }
   return dembridge::app::one_line(what);
 }
+
+#ifdef DEMBRIDGE_HAVE_FEM
+/// An FE dynamics run's checkpoints (fem_case.h) on the checkpoint file of @p checkpoint.
+dembridge::fem::DynamicsCheckpoints fem_checkpoints(const dealii::ParameterHandler& prm,
+                                                    const dembridge::app::CheckpointSettings& c)
+{
+  dembridge::fem::DynamicsCheckpoints f;
+  if (c.file.empty())
+    return f;
+  f.interval = prm.get_double({"Output"}, "checkpoint interval");
+  f.wall_interval = prm.get_double({"Output"}, "checkpoint wall interval");
+  f.resume = c.resume;
+  f.write = [&c](long step, double time, const dembridge::fem::DynamicsCheckpoints::Visit& visit)
+  { dembridge::app::write_checkpoint(c.file, make_checkpoint_header(c, step, time), visit); };
+  f.read = [&c](const dembridge::fem::DynamicsCheckpoints::Visit& visit)
+  {
+    dembridge::app::read_checkpoint(c.file, visit);
+    std::printf("resumed from %s: step %ld, t = %.6g s\n", c.file.string().c_str(), c.resumed_step,
+                c.resumed_time);
+  };
+  if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
+    f.after_step = [step = std::atol(kill)](long n)
+    {
+      if (n == step)
+        std::raise(SIGKILL);
+    };
+  return f;
+}
+#endif
 
 int run(const std::string& case_file, const std::vector<std::string>& overrides,
         std::string output_dir, const std::string& resume_dir)
@@ -109,7 +141,14 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     else
     {
 #ifdef DEMBRIDGE_HAVE_FEM
-      summary = dembridge::fem::run_case(*prm, abs_dir, MPI_COMM_WORLD);
+      {
+        const auto fem_checkpoint = fem_checkpoints(*prm, checkpoint);
+        summary = dembridge::fem::run_case(*prm, abs_dir, MPI_COMM_WORLD, &fem_checkpoint);
+        if (checkpoint.resume)
+          summary["resumed_from"] = {{"file", checkpoint.file.string()},
+                                     {"step", checkpoint.resumed_step},
+                                     {"time", checkpoint.resumed_time}};
+      }
 #else
       throw std::runtime_error("Mode: this build has no FEM layer (deal.II not found)");
 #endif

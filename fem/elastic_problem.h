@@ -96,6 +96,11 @@ public:
   dealii::types::global_cell_index n_cells() const { return triangulation.n_global_active_cells(); }
   const BoundaryNames& boundary_names() const { return names; }
   dealii::TimerOutput& timer() { return computing_timer; }
+  /// The snapshots written so far (time, .pvtu name): the .pvd's records.
+  const std::vector<std::pair<double, std::string>>& snapshot_records() const
+  {
+    return pvtu_records;
+  }
 
 protected:
   /// Internal nodal forces f_int = int B^T sigma(u) dx, unconstrained (ghosted input).

@@ -5,9 +5,14 @@
 #include "explicit_dynamics.h"
 #include "parameters.h"
 
+#include "dem/core/state_archive.h"
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 namespace dembridge::fem
 {
@@ -149,14 +154,61 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   write_timer_log(problem.timer(), output_dir, comm);
   return summary;
 }
+/// What the dynamics loop carries from step to step beside the continuum (a checkpoint's
+/// /fem_run/): the history rows so far, the energy series and zero crossings that the summary
+/// reads at the end, the probe component followed, the next checkpoint time.
+struct DynamicsLoopState
+{
+  long steps = 0; ///< steps done
+  std::vector<double> shadow, total, crossings;
+  double previous_value = 0, previous_time = 0;
+  int component = 0;
+  double next_checkpoint_time = 0;
+  std::string history; ///< history.csv so far (rank 0; kept only with checkpoints)
+
+  void visit(dem::StateArchive& a)
+  {
+    dem::StateGroup group(a, "fem_run");
+    a.io("steps", steps);
+    a.io("shadow_energy", shadow);
+    a.io("total_energy", total);
+    a.io("zero_crossings", crossings);
+    a.io("previous_value", previous_value);
+    a.io("previous_time", previous_time);
+    a.io("component", component);
+    a.io("next_checkpoint_time", next_checkpoint_time);
+    a.io("history_csv", history);
+  }
+};
+
+/// Removes the snapshots an interrupted run wrote after its checkpoint (they are written
+/// again): BASE_NNNN.pvtu and its pieces BASE_NNNN.R.vtu not in the restored records.
+void remove_later_snapshots(const std::filesystem::path& dir, const std::string& base,
+                            const std::vector<std::pair<double, std::string>>& records)
+{
+  std::set<std::string> listed;
+  for (const auto& r : records)
+    listed.insert(r.second.substr(0, r.second.find('.')));
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+  {
+    const std::string name = entry.path().filename().string();
+    const std::string ext = entry.path().extension().string();
+    if ((ext == ".vtu" || ext == ".pvtu") && name.rfind(base + "_", 0) == 0 &&
+        !listed.count(name.substr(0, name.find('.'))))
+      std::filesystem::remove(entry.path());
+  }
+}
+
 // Explicit dynamics: n steps of size factor * dt_stable; history.csv with the probe
 // displacements and the energies; the natural frequency from the zero crossings of the first
-// probe's dominant displacement component (free vibration about u = 0).
+// probe's dominant displacement component (free vibration about u = 0). With checkpoints the
+// loop's state and the continuum's are saved between steps and restored before the first.
 nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& output_dir,
-                            MPI_Comm comm)
+                            MPI_Comm comm, const DynamicsCheckpoints* checkpoints)
 {
   ExplicitDynamics problem(p, comm);
-  ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  ConditionalOStream pcout(std::cout, root);
   problem.setup();
   const double dt = p.time_step_factor * problem.stable_time_step();
   pcout << "FEM dynamics: " << problem.n_cells() << " cells, " << problem.n_dofs()
@@ -166,32 +218,60 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   std::vector<PointProbe> probes;
   for (const auto& x : p.probe_points)
     probes.push_back(problem.make_probe(x, "FEM/Dynamics/probe points"));
-  unsigned int component = 0;
+  DynamicsLoopState loop;
   if (!probes.empty())
   {
     const Tensor<1, 3> u0 = problem.probe_vector(probes[0]);
     for (unsigned int d = 1; d < 3; ++d)
-      if (std::abs(u0[d]) > std::abs(u0[component]))
-        component = d;
+      if (std::abs(u0[d]) > std::abs(u0[loop.component]))
+        loop.component = int(d);
   }
+  const double interval = checkpoints ? checkpoints->interval : 0.0;
+  const double wall_interval = checkpoints ? checkpoints->wall_interval : 0.0;
+  const bool keep_history = interval > 0 || wall_interval > 0;
+  loop.next_checkpoint_time = interval;
 
-  std::ofstream history;
-  if (Utilities::MPI::this_mpi_process(comm) == 0)
+  std::ostringstream header;
+  header << "step,time";
+  for (unsigned int k = 0; k < probes.size(); ++k)
+    header << ",probe" << k << "_ux,probe" << k << "_uy,probe" << k << "_uz";
+  header << ",kinetic_energy,kinetic_energy_shadow,strain_energy,load_potential,"
+            "total_energy,shadow_energy\n";
+  loop.history = header.str();
+  const auto visit = [&](dem::StateArchive& a)
   {
-    history.open(output_dir / "history.csv");
-    history << "step,time";
-    for (unsigned int k = 0; k < probes.size(); ++k)
-      history << ",probe" << k << "_ux,probe" << k << "_uy,probe" << k << "_uz";
-    history << ",kinetic_energy,kinetic_energy_shadow,strain_energy,load_potential,"
-               "total_energy,shadow_energy\n";
-    history.precision(12);
+    problem.visit_state(a);
+    loop.visit(a);
+  };
+  if (checkpoints && checkpoints->resume)
+  {
+    if (root)
+      checkpoints->read(visit);
+    problem.scatter_state(); // collective: each rank's part of the continuum
+    broadcast_state(comm, [&](dem::StateArchive& a) { loop.visit(a); });
+    if (root)
+      remove_later_snapshots(output_dir, p.base_name, problem.snapshot_records());
   }
-  if (p.write_vtu)
+  // history.csv: the rows so far (a resumed run's from its checkpoint), then one per step
+  const auto history_path = output_dir / "history.csv";
+  std::ofstream history;
+  if (root)
+  {
+    history.open(history_path, std::ios::binary | std::ios::trunc);
+    history << loop.history;
+    if (!history)
+      throw std::runtime_error(history_path.string() + ": cannot write");
+  }
+  if (!keep_history)
+    loop.history.clear();
+  if (p.write_vtu && loop.steps == 0)
     problem.output_results(output_dir, 0, 0.0);
 
-  std::vector<double> shadow, total, crossings;
-  double previous_value = 0, previous_time = 0;
-  for (unsigned int n = 0; n < p.n_steps; ++n)
+  using clock = std::chrono::steady_clock;
+  auto last_checkpoint = clock::now();
+  std::ostringstream row;
+  row.precision(12);
+  for (unsigned int n = unsigned(loop.steps); n < p.n_steps; ++n)
   {
     const double t_n = problem.time();
     std::vector<Tensor<1, 3>> u;
@@ -199,31 +279,63 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
       u.push_back(problem.probe_vector(probe));
     problem.step(dt); // energies below belong to step n (time t_n)
     const auto& e = problem.energies();
-    shadow.push_back(e.shadow_total());
-    total.push_back(e.total());
+    loop.shadow.push_back(e.shadow_total());
+    loop.total.push_back(e.total());
     if (!u.empty())
     {
-      const double value = u[0][component];
-      if (n > 0 && previous_value * value < 0)
-        crossings.push_back(previous_time +
-                            (t_n - previous_time) * previous_value / (previous_value - value));
-      previous_value = value;
-      previous_time = t_n;
+      const double value = u[0][loop.component];
+      if (n > 0 && loop.previous_value * value < 0)
+        loop.crossings.push_back(loop.previous_time + (t_n - loop.previous_time) *
+                                                          loop.previous_value /
+                                                          (loop.previous_value - value));
+      loop.previous_value = value;
+      loop.previous_time = t_n;
     }
-    if (history.is_open())
+    if (root)
     {
-      history << n << "," << t_n;
+      row.str("");
+      row << n << "," << t_n;
       for (const auto& v : u)
-        history << "," << v[0] << "," << v[1] << "," << v[2];
-      history << "," << e.kinetic << "," << e.kinetic_shadow << "," << e.strain << ","
-              << e.load_potential << "," << e.total() << "," << e.shadow_total() << "\n";
+        row << "," << v[0] << "," << v[1] << "," << v[2];
+      row << "," << e.kinetic << "," << e.kinetic_shadow << "," << e.strain << ","
+          << e.load_potential << "," << e.total() << "," << e.shadow_total() << "\n";
+      history << row.str();
+      if (keep_history)
+        loop.history += row.str();
     }
     if (p.write_vtu && p.output_every > 0 && (n + 1) % p.output_every == 0)
       problem.output_results(output_dir, (n + 1) / p.output_every, problem.time());
+    loop.steps = long(n) + 1;
+    bool due = false;
+    if (interval > 0 && problem.time() + 0.5 * dt >= loop.next_checkpoint_time)
+    {
+      due = true;
+      while (loop.next_checkpoint_time <= problem.time() + 0.5 * dt)
+        loop.next_checkpoint_time += interval;
+    }
+    if (wall_interval > 0)
+    {
+      // why: the ranks' clocks differ and a checkpoint is collective: rank 0's clock decides
+      const bool late =
+          std::chrono::duration<double>(clock::now() - last_checkpoint).count() >= wall_interval;
+      due = Utilities::MPI::broadcast(comm, late, 0) || due;
+    }
+    if (due && n + 1 < p.n_steps) // none after the last step: the run is about to complete
+    {
+      problem.gather_state(); // collective
+      if (root)
+        checkpoints->write(loop.steps, problem.time(), visit);
+      last_checkpoint = clock::now();
+    }
+    if (checkpoints && checkpoints->after_step)
+      checkpoints->after_step(loop.steps);
   }
   if (p.write_vtu && (p.output_every == 0 || p.n_steps % p.output_every != 0))
     problem.output_results(output_dir, p.output_every == 0 ? 1 : p.n_steps / p.output_every + 1,
                            problem.time());
+  const std::vector<double>& shadow = loop.shadow;
+  const std::vector<double>& total = loop.total;
+  const std::vector<double>& crossings = loop.crossings;
 
   nlohmann::json summary;
   summary["n_dofs"] = problem.n_dofs();
@@ -271,12 +383,13 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
 } // namespace
 
 nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path& output_dir,
-                        MPI_Comm comm)
+                        MPI_Comm comm, const DynamicsCheckpoints* checkpoints)
 {
-  return run_case(parse_parameters(prm), output_dir, comm);
+  return run_case(parse_parameters(prm), output_dir, comm, checkpoints);
 }
 
-nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm)
+nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm,
+                        const DynamicsCheckpoints* checkpoints)
 {
   nlohmann::json summary;
   if (p.incompatible_modes && p.problem == ProblemKind::static_elasticity)
@@ -286,7 +399,7 @@ nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output
   if (p.problem == ProblemKind::static_elasticity)
     summary = run_static(p, output_dir, comm);
   else
-    summary = run_dynamics(p, output_dir, comm);
+    summary = run_dynamics(p, output_dir, comm, checkpoints);
   summary["mode"] = "fem";
   summary["problem"] = p.problem == ProblemKind::static_elasticity ? "static" : "dynamics";
   summary["degree"] = p.degree;

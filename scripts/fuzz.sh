@@ -10,7 +10,11 @@
 # 10 s, memory over 2 GB) leaves its input in build-fuzz/findings/ and makes the script exit 1.
 # FUZZ_SECONDS=S stops a target after S seconds even if RUNS are not done (the line then shows
 # the executions reached); FUZZ_JOBS=N builds with N jobs (default 2); FUZZ_FLAGS="..." passes
-# more libFuzzer flags to every target (e.g. FUZZ_FLAGS="-jobs=2" or "-seed=1").
+# more libFuzzer flags to every target (e.g. FUZZ_FLAGS="-jobs=2" or "-seed=1"); FUZZ_NO_BUILD=1
+# runs the targets as built (a long run while the sources change); FUZZ_ASAN_OPTIONS replaces the
+# sanitizer options (default detect_leaks=1:abort_on_error=1; malloc_context_size=0 doubles
+# fuzz_case_file's rate, whose inputs allocate thousands of small blocks, at the cost of the
+# allocation stack in a report: replay a finding without it).
 # Needs clang and libclang-rt-14-dev (Debian 12: apt-get install clang libclang-rt-14-dev).
 set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -25,7 +29,7 @@ if [ ! -f "$build/build.ninja" ]; then
   CXX=clang++ CC=clang cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DDEMBRIDGE_FUZZ=ON -DDEMBRIDGE_NATIVE=OFF -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null || exit 2
 fi
-nice -n 10 cmake --build "$build" -j "${FUZZ_JOBS:-2}" --target "${targets[@]}" dembridge_meshes >/dev/null || {
+[ -n "${FUZZ_NO_BUILD:-}" ] || nice -n 10 cmake --build "$build" -j "${FUZZ_JOBS:-2}" --target "${targets[@]}" dembridge_meshes >/dev/null || {
   echo "fuzz.sh: build failed (rerun: cmake --build $build --target ${targets[*]})" >&2; exit 2; }
 
 # Seeds: the inputs the project itself reads and refuses.
@@ -47,7 +51,7 @@ if command -v gmsh >/dev/null; then
 fi
 mkdir -p "$build/findings"
 
-export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export ASAN_OPTIONS=${FUZZ_ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 status=0
 printf "%-18s %10s %8s %10s %8s %8s %s\n" target executions seconds "exec/s" coverage "rss_mb" result
 for t in "${targets[@]}"; do

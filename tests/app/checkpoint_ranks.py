@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""A coupled checkpoint is resumed on the number of MPI ranks that wrote it, no other (issue 11;
+"""A coupled or FE checkpoint is resumed on the number of MPI ranks that wrote it, no other (issue 11;
 docs/checkpoint.md): each rank sums its own share of the continuum's works.
 
-usage: checkpoint_ranks.py DEMBRIDGE MPIEXEC CASE OUT [--set KEY=VALUE]...
+usage: checkpoint_ranks.py DEMBRIDGE MPIEXEC CASE OUT [--kill-after-step N] [--set KEY=VALUE]...
 
 Runs the coupled case (with Output/checkpoint interval among the --set) under `MPIEXEC -np 2`,
-killed (SIGKILL) a few steps after its first checkpoint, and resumes it on one rank; then the
+killed (SIGKILL) a few steps after its first checkpoint (after step N, default 80: the first
+checkpoint of tests/coupling/coupled_pull.prm is at step 78), and resumes it on one rank; then the
 reverse (written on one rank, resumed on two). Each resume must be refused with exit code 1 and
 one line on the stderr of every rank naming both rank counts, before any step.
 Plain python3.
@@ -27,7 +28,11 @@ def main():
     if len(sys.argv) < 5:
         fail(__doc__)
     exe, mpiexec, case, out = sys.argv[1:5]
-    sets = sys.argv[5:] + ["--set", "Simulation/threads=1"]
+    rest = sys.argv[5:]
+    kill_after = "80"
+    if rest[:1] == ["--kill-after-step"]:
+        kill_after, rest = rest[1], rest[2:]
+    sets = rest + ["--set", "Simulation/threads=1"]
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
 
@@ -53,8 +58,7 @@ def main():
 
     for written, resumed in ((2, 1), (1, 2)):
         folder = os.path.join(out, "np%d_resumed_on_%d" % (written, resumed))
-        # the first checkpoint is written at step 78 (0.2 ms) of coupled_pull.prm
-        rc, _ = run(written, folder, env_extra={"DEMBRIDGE_TEST_KILL_AFTER_STEP": "80"})
+        rc, _ = run(written, folder, env_extra={"DEMBRIDGE_TEST_KILL_AFTER_STEP": kill_after})
         if rc in (0, 1) or not os.path.exists(os.path.join(folder, "checkpoint.h5")):
             fail("np %d: the run was not killed after a checkpoint (exit code %d)" % (written, rc))
         rc, errs = run(resumed, folder, resume=True)
