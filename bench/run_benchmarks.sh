@@ -33,6 +33,10 @@ if command -v yade > /dev/null; then
       --timing-steps 0 --json-out "$here/bench/peers/yade_results.json" | grep '^{' \
       > "$out/yade_hcp_r2.5mm_threads$threads.json"
   done
+else
+  # why: the table would otherwise show an earlier run's YADE rows beside this run's as if new
+  echo "run_benchmarks.sh: yade not installed (apt-get install --no-install-recommends yade):" \
+    "the YADE rows below are an earlier run's (bench/results/yade_*.json)" >&2
 fi
 /usr/bin/python3 "$here/bench/dem_results_table.py" "$out"
 if [ "${1:-}" = "--damage" ]; then
