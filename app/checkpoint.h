@@ -1,6 +1,7 @@
 #pragma once
-// Checkpoint and restart of explicit DEM runs and coupled DEM-FE runs (on any number of MPI
-// ranks; rank 0 alone reads and writes the file) (docs/checkpoint.md).
+// Checkpoint and restart of explicit DEM runs, coupled DEM-FE runs and FE dynamics runs (the
+// last two on any number of MPI ranks; rank 0 alone reads and writes the file)
+// (docs/checkpoint.md).
 //
 // A checkpoint is one HDF5 file, DIR/checkpoint.h5 in the run's output folder, written every
 // Output/checkpoint interval of simulated time (or checkpoint wall interval of wall time) between
@@ -34,7 +35,7 @@ struct CheckpointSettings
   double interval = 0;        ///< simulated time between checkpoints, s; 0: none
   double wall_interval = 0;   ///< wall time between checkpoints, s; 0: none
   bool resume = false;        ///< restore from `file` before the first step
-  int ranks = 1;              ///< MPI ranks of a coupled run (1 for a DEM run: one process each)
+  int ranks = 1;              ///< MPI ranks of a coupled or FE run (1 for a DEM run)
   long resumed_step = 0;      ///< the checkpoint's step and time (resume)
   double resumed_time = 0;
   std::string case_name; ///< the case file's name (messages, header)
@@ -49,8 +50,8 @@ struct CheckpointSettings
 ///  - a fresh run: @p output_dir defaults to output/CASE; a folder that holds the checkpoint of
 ///    an interrupted run is refused (continue it with --resume, or delete the checkpoint), so
 ///    that days of computing are never lost to a forgotten option;
-///  - refused: checkpoints or --resume in an FE run (Mode = fem) (InputError naming the key; an
-///    FE run gets no checkpoint file), a coupled checkpoint of another number of MPI ranks.
+///  - refused: checkpoints or --resume in a static FE run (FEM/problem = static: no steps;
+///    InputError naming the key), a coupled or FE checkpoint of another number of MPI ranks.
 /// Collective on MPI_COMM_WORLD when MPI is running: rank 0 reads the file, every rank throws
 /// its verdict.
 CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
