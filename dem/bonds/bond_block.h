@@ -180,22 +180,16 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
     out.Md[0][j] = f.Md[0], out.Md[1][j] = f.Md[1], out.Md[2][j] = f.Md[2];
     out.e[0][j] = f.e[0], out.e[1][j] = f.e[1], out.e[2][j] = f.e[2];
     out.ra[j] = f.ra, out.rb[j] = f.rb, out.strain_energy[j] = f.strain_energy;
-    // the resultants' moments, as bond_resultants forms them
-    const double cx = f.e[1] * f.Fc[2] - f.e[2] * f.Fc[1], cy = f.e[2] * f.Fc[0] - f.e[0] * f.Fc[2],
-                 cz = f.e[0] * f.Fc[1] - f.e[1] * f.Fc[0];
-    out.Ma[0][j] = -f.Mc[0] - f.ra * cx, out.Ma[1][j] = -f.Mc[1] - f.ra * cy;
-    out.Ma[2][j] = -f.Mc[2] - f.ra * cz;
-    out.Mb[0][j] = f.Mc[0] + f.rb * cx, out.Mb[1][j] = f.Mc[1] + f.rb * cy;
-    out.Mb[2][j] = f.Mc[2] + f.rb * cz;
+    // the resultants' moments (bond_kernel.h)
+    double ma[3], mb[3];
+    resultant_moments(f.Fc, f.Mc, f, ma, mb);
+    for (int d = 0; d < 3; ++d)
+      out.Ma[d][j] = ma[d], out.Mb[d][j] = mb[d];
     if constexpr (dashpots)
     {
-      const double dx = f.e[1] * f.Fd[2] - f.e[2] * f.Fd[1],
-                   dy = f.e[2] * f.Fd[0] - f.e[0] * f.Fd[2],
-                   dz = f.e[0] * f.Fd[1] - f.e[1] * f.Fd[0];
-      out.Mda[0][j] = -f.Md[0] - f.ra * dx, out.Mda[1][j] = -f.Md[1] - f.ra * dy;
-      out.Mda[2][j] = -f.Md[2] - f.ra * dz;
-      out.Mdb[0][j] = f.Md[0] + f.rb * dx, out.Mdb[1][j] = f.Md[1] + f.rb * dy;
-      out.Mdb[2][j] = f.Md[2] + f.rb * dz;
+      resultant_moments(f.Fd, f.Md, f, ma, mb);
+      for (int d = 0; d < 3; ++d)
+        out.Mda[d][j] = ma[d], out.Mdb[d][j] = mb[d];
     }
   }
 }

@@ -131,17 +131,27 @@ template <bool dashpots>
   }
 }
 
-/// Particle resultants (Table 8) of a contact force F and couple M acting on b at the contact
-/// point: F_a = -F, M_a = -M - r_a e x F;  F_b = F, M_b = M + r_b e x F.
-inline void bond_resultants(const double* F, const double* M, const BondForces& f, double* Fa,
-                            double* Ma, double* Fb, double* Mb)
+/// The particle resultants' moments (Table 8) of a contact force F and couple M acting on b at
+/// the contact point: M_a = -M - r_a e x F on a, M_b = M + r_b e x F on b (the forces are -F on
+/// a and F on b).
+[[gnu::always_inline]] inline void resultant_moments(const double* F, const double* M,
+                                                     const BondForces& f, double* Ma, double* Mb)
 {
   const double cx = f.e[1] * F[2] - f.e[2] * F[1], cy = f.e[2] * F[0] - f.e[0] * F[2],
                cz = f.e[0] * F[1] - f.e[1] * F[0];
-  Fa[0] -= F[0], Fa[1] -= F[1], Fa[2] -= F[2];
-  Fb[0] += F[0], Fb[1] += F[1], Fb[2] += F[2];
-  Ma[0] += -M[0] - f.ra * cx, Ma[1] += -M[1] - f.ra * cy, Ma[2] += -M[2] - f.ra * cz;
-  Mb[0] += M[0] + f.rb * cx, Mb[1] += M[1] + f.rb * cy, Mb[2] += M[2] + f.rb * cz;
+  Ma[0] = -M[0] - f.ra * cx, Ma[1] = -M[1] - f.ra * cy, Ma[2] = -M[2] - f.ra * cz;
+  Mb[0] = M[0] + f.rb * cx, Mb[1] = M[1] + f.rb * cy, Mb[2] = M[2] + f.rb * cz;
+}
+
+/// Particle resultants (Table 8) of a contact force F and couple M acting on b at the contact
+/// point, added to a's and b's: F_a = -F, M_a = -M - r_a e x F;  F_b = F, M_b = M + r_b e x F.
+inline void bond_resultants(const double* F, const double* M, const BondForces& f, double* Fa,
+                            double* Ma, double* Fb, double* Mb)
+{
+  double ma[3], mb[3];
+  resultant_moments(F, M, f, ma, mb);
+  for (int d = 0; d < 3; ++d)
+    Fa[d] -= F[d], Fb[d] += F[d], Ma[d] += ma[d], Mb[d] += mb[d];
 }
 
 /// Eigen-typed view of one bond, for tests and tools (same code path as the solver).
