@@ -1,4 +1,4 @@
-// The slab partition of the bond loop (explicit_solver.cc) must not change the physics: two
+// The slab partition of the bond loop (explicit_solver_bonds.cc) must not change the physics: two
 // threads give the one-thread trajectory up to summation order (round-off).
 #include "dem/bonds/bonding.h"
 #include "dem/solvers/explicit_solver.h"

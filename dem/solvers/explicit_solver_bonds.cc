@@ -1,0 +1,267 @@
+// The explicit solver's bond loop (explicit_solver.h): the unified law on SIMD blocks of bonds
+// (bonds/bond_block.h), the failure laws on the trial forces (bond_damage.h), the scatter of the
+// particle resultants and the dashpot resultants, the crack log, and the bond-force evaluation
+// for tests and tools. The rest of the step (loads, integration, supports) is explicit_solver.cc.
+#include "dem/bonds/bond_block.h"
+#include "dem/bonds/bond_stress.h"
+#include "dem/solvers/explicit_solver.h"
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dembridge::dem
+{
+template <bool record, bool dashpots, FailureMode failure>
+void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain,
+                                double& fracture, double& intact_force, long& intact,
+                                std::vector<CrackEvent>& events)
+{
+  [[maybe_unused]] const bool records = b_.records_forces();
+  [[maybe_unused]] const Vec3* v = p_.velocity.data();
+  [[maybe_unused]] const Vec3* w = p_.angular_velocity.data();
+  Vec3* F = p_.force.data();
+  Vec3* M = p_.torque.data();
+  DashpotResultant* D = dashpot_.data();
+  [[maybe_unused]] const FailureLaw& law = b_.failure;
+  [[maybe_unused]] const double dt = settings_.time_step;
+  const BondLawArrays arrays(p_, b_);
+  BondBlock block;
+  BondForces f;
+  for (std::size_t k0 = begin; k0 < end; k0 += BondBlock::W)
+  {
+    const int m = int(std::min<std::size_t>(BondBlock::W, end - k0));
+    bond_law_block<dashpots>(arrays, k0, m, block); // the law in SIMD lanes
+    for (int j = 0; j < m; ++j)                     // scatter, failure, records: bond by bond
+    {
+      const std::size_t k = k0 + std::size_t(j);
+      if constexpr (failure == FailureMode::none)
+      {
+        if (b_.state[k] != BondState::intact)
+          continue;
+      }
+      else if (b_.state[k] == BondState::broken)
+        continue;
+      const int ia = b_.a[k], ib = b_.b[k];
+      if constexpr (record || failure != FailureMode::none)
+        block.lane(j, f);
+      [[maybe_unused]] double carried = 1.0; // 1 - D
+      if constexpr (failure != FailureMode::none)
+      {
+        // Failure index on the trial elastic forces (bond_stress.h; bond_damage.h eq. 1-2), its
+        // two ratios compared as sigma A R against sigma_t A R and tau A R against tau_max A R:
+        // no division on the way, the common case of a bond below its strength
+        const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
+        const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
+        const double R = b_.radius[k], area = std::numbers::pi * R * R;
+        const SectionLoads loads = section_loads(Fe, Me, f.e, R, law.moment_factor);
+        const double tension_cap = b_.tensile_strength[k] * area * R;
+        const double shear_cap =
+            shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
+        // kappa_s > kappa_t (rare: read on failure only)
+        auto shear_governs = [&] { return loads.shear * tension_cap > loads.tension * shear_cap; };
+        // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
+        auto elastic_power = [&]
+        {
+          const double cx = f.e[1] * Fe[2] - f.e[2] * Fe[1], cy = f.e[2] * Fe[0] - f.e[0] * Fe[2],
+                       cz = f.e[0] * Fe[1] - f.e[1] * Fe[0];
+          double P = 0;
+          for (int d = 0; d < 3; ++d)
+          {
+            const double c = d == 0 ? cx : d == 1 ? cy : cz;
+            P += Fe[d] * (v[ib][d] - v[ia][d]) - (Me[d] + f.ra * c) * w[ia][d] +
+                 (Me[d] + f.rb * c) * w[ib][d];
+          }
+          return P;
+        };
+        auto fail = [&](double energy, CrackMode mode)
+        {
+          b_.state[k] = BondState::broken;
+          b_.damage[k] = 1.0;
+          events.push_back({time_, k, ia, ib, Vec3::Zero(), Vec3::UnitX(), mode, energy});
+        };
+        if constexpr (failure == FailureMode::brittle)
+        {
+          if (loads.tension >= tension_cap || loads.shear >= shear_cap) // kappa >= 1
+          {
+            // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
+            const double released = f.strain_energy + 0.5 * dt * elastic_power();
+            fracture += released;
+            b_.dissipated[k] = released;
+            fail(released, shear_governs() ? CrackMode::shear : CrackMode::tension);
+            continue;
+          }
+        }
+        else if (const double hat = std::max(1.0, b_.kappa_max[k]);
+                 loads.tension > hat * tension_cap || loads.shear > hat * shear_cap)
+        {
+          // kappa above 1 and above the largest so far: damage grows
+          const double kappa = std::max(loads.tension / tension_cap, loads.shear / shear_cap);
+          b_.kappa_max[k] = kappa;
+          if (b_.state[k] == BondState::intact)
+          {
+            // softening starts: kappa_u from the energy at the peak (eq. 4)
+            const double peak_energy = f.strain_energy / (kappa * kappa);
+            const bool shear = shear_governs();
+            const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
+            b_.kappa_ultimate[k] = std::max(1.0, gf * area / peak_energy);
+            b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
+            b_.state[k] = BondState::softening;
+          }
+          const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
+          const double released =
+              (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
+          fracture += released;
+          b_.dissipated[k] += released;
+          b_.damage[k] = D;
+          if (D >= 1.0)
+          {
+            fail(b_.dissipated[k], b_.failure_mode[k]);
+            continue;
+          }
+        }
+        carried = 1.0 - b_.damage[k];
+        if (carried < 1.0) // what the record reads (the resultants take carried below)
+          for (int d = 0; d < 3; ++d)
+            f.Fc[d] *= carried, f.Mc[d] *= carried;
+      }
+      // the particle resultants (bond_resultants, formed in the block's lanes), times 1 - D
+      for (int d = 0; d < 3; ++d)
+      {
+        const double Fc = carried * block.Fc[d][j];
+        F[ia][d] -= Fc, M[ia][d] += carried * block.Ma[d][j];
+        F[ib][d] += Fc, M[ib][d] += carried * block.Mb[d][j];
+      }
+      if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
+        for (int d = 0; d < 3; ++d)
+        {
+          const double Fdc = carried * block.Fd[d][j];
+          D[ia].force[d] -= Fdc, D[ia].torque[d] += carried * block.Mda[d][j];
+          D[ib].force[d] += Fdc, D[ib].torque[d] += carried * block.Mdb[d][j];
+        }
+      if constexpr (record)
+      {
+        if constexpr (failure == FailureMode::none)
+          strain += f.strain_energy;
+        else
+          strain += carried * f.strain_energy; // secant: (1 - D) U_e
+        if (b_.state[k] == BondState::intact)
+          intact_force += std::sqrt(f.Fc[0] * f.Fc[0] + f.Fc[1] * f.Fc[1] + f.Fc[2] * f.Fc[2]),
+              ++intact;
+        if (records)
+        {
+          b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
+          b_.moment[k] = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+        }
+      }
+    }
+  }
+}
+
+template <bool record, bool dashpots, FailureMode failure>
+void ExplicitSolver::compute_bond_forces()
+{
+  double strain = 0, fracture = 0, intact_force = 0;
+  long intact = 0;
+  for (int phase = 0; phase < 3; ++phase)
+  {
+    const auto& ranges = phases_[phase];
+    if (ranges.empty())
+      continue;
+    auto* buffers = crack_buffers_.data() + phase_buffer_[phase];
+#pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain, fracture, intact_force, intact)
+    for (std::size_t r = 0; r < ranges.size(); ++r)
+      bond_range<record, dashpots, failure>(ranges[r].first, ranges[r].second, strain, fracture,
+                                            intact_force, intact, buffers[r]);
+  }
+  for (std::size_t r = 0; r < phases_[3].size(); ++r)
+    bond_range<record, dashpots, failure>(phases_[3][r].first, phases_[3][r].second, strain,
+                                          fracture, intact_force, intact,
+                                          crack_buffers_[phase_buffer_[3] + r]);
+  if constexpr (record)
+  {
+    energy_.strain = strain;
+    intact_force_ = intact_force, n_intact_ = intact;
+  }
+  if constexpr (failure != FailureMode::none)
+  {
+    energy_.fracture += fracture;
+    drain_crack_events();
+  }
+}
+
+template <bool record> void ExplicitSolver::dispatch_bond_forces()
+{
+  switch (b_.failure.mode)
+  {
+  case FailureMode::none:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::none>()
+              : compute_bond_forces<record, false, FailureMode::none>();
+    break;
+  case FailureMode::brittle:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::brittle>()
+              : compute_bond_forces<record, false, FailureMode::brittle>();
+    break;
+  case FailureMode::softening:
+    dashpots_ ? compute_bond_forces<record, true, FailureMode::softening>()
+              : compute_bond_forces<record, false, FailureMode::softening>();
+    break;
+  }
+}
+
+// Serial, after the parallel loop: the failures of this step, with where they happened
+// (positions x^n), in the order of the particles' user ids (ParticleStore::id), so the log
+// depends neither on the thread partition nor on the spatial renumbering.
+void ExplicitSolver::drain_crack_events()
+{
+  const std::size_t first = cracks_.size();
+  for (auto& buffer : crack_buffers_)
+  {
+    for (auto& c : buffer)
+    {
+      const Vec3 &xa = p_.position[c.a], &xb = p_.position[c.b];
+      c.midpoint = 0.5 * (xa + xb);
+      c.axis = (xb - xa).normalized();
+      --p_.coordination[c.a];
+      --p_.coordination[c.b];
+      c.a = p_.id[std::size_t(c.a)], c.b = p_.id[std::size_t(c.b)]; // the log shows user ids
+      ++broken_by_mode_[int(c.mode)];
+      cracks_.push_back(c);
+    }
+    buffer.clear();
+  }
+  std::sort(cracks_.begin() + long(first), cracks_.end(),
+            [](const CrackEvent& x, const CrackEvent& y)
+            { return std::pair(x.a, x.b) < std::pair(y.a, y.b); });
+}
+
+std::vector<Vec3> ExplicitSolver::dashpot_forces() const
+{
+  std::vector<Vec3> out(p_.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < dashpot_.size(); ++i)
+    out[i] = dashpot_[i].force;
+  return out;
+}
+
+std::vector<Vec3> ExplicitSolver::dashpot_torques() const
+{
+  std::vector<Vec3> out(p_.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < dashpot_.size(); ++i)
+    out[i] = dashpot_[i].torque;
+  return out;
+}
+
+void ExplicitSolver::evaluate_bond_forces()
+{
+  for (std::size_t i = 0; i < p_.size(); ++i)
+  {
+    p_.force[i].setZero(), p_.torque[i].setZero();
+    if (dashpots_)
+      dashpot_[i] = DashpotResultant{};
+  }
+  dashpots_ ? compute_bond_forces<true, true, FailureMode::none>()
+            : compute_bond_forces<true, false, FailureMode::none>();
+}
+
+template void ExplicitSolver::dispatch_bond_forces<true>();
+template void ExplicitSolver::dispatch_bond_forces<false>();
+} // namespace dembridge::dem
