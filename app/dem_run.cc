@@ -166,8 +166,7 @@ public:
     // one writer: a DEM run started on several MPI ranks runs the same model on each
     if (checkpoint_.file.empty() || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
       return;
-    write_checkpoint(checkpoint_.file,
-                     make_checkpoint_header(checkpoint_, s.steps(), s.time()),
+    write_checkpoint(checkpoint_.file, make_checkpoint_header(checkpoint_, s.steps(), s.time()),
                      [&](dem::StateArchive& a) { visit_state(a, s, progress); });
   }
 
@@ -288,7 +287,10 @@ private:
 nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
                             CheckpointSettings checkpoint)
 {
-  const dem::CaseConfig config = parse_dem_case(prm);
+  dem::CaseConfig config = parse_dem_case(prm);
+  // per-bond force records feed the static run's figures only (ParaView bond files evaluate
+  // each bond on demand)
+  config.run.bond_force_records = config.run.static_solver;
   const OutputSettings out = parse_output_settings(prm);
   checkpoint.interval = out.checkpoint_interval;
   checkpoint.wall_interval = out.checkpoint_wall_interval;
@@ -298,9 +300,6 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
   dem::Model model = dem::build_model(config);
-  // per-bond force records feed the ParaView bond files and the static run's figures only
-  if (!config.run.static_solver && !out.write_vtu)
-    model.bonds.drop_force_records();
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",
               model.particles.size(), model.bonds.size(), prm.get({"Bonds"}, "model").c_str(),

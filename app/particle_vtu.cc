@@ -85,10 +85,11 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
       pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
       const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
       const dem::Vec3 e = (xb - xa).normalized();
-      // a broken bond carries nothing (its last recorded forces are those before the break)
-      const bool bonded = dem::is_bonded(b.state[k]);
-      const dem::Vec3 F = bonded ? b.force[k] : dem::Vec3::Zero();
-      const dem::Vec3 M = bonded ? b.moment[k] : dem::Vec3::Zero();
+      // evaluated here from the written configuration (no per-bond records kept by the run);
+      // a broken bond carries nothing
+      const dem::BondContactForce contact = dem::bond_contact_force(p, b, k);
+      const dem::Vec3& F = contact.force;
+      const dem::Vec3& M = contact.moment;
       normal[k] = -F.dot(e); // F is the force on b: pulling b back is tension
       shear[k] = (F - F.dot(e) * e).norm();
       twist[k] = M.dot(e);

@@ -20,7 +20,7 @@ void BondStore::add(std::int32_t ia, std::int32_t ib, double length, const Vec3&
   damping_moment.push_back(0.0);
   model.push_back(m);
   state.push_back(BondState::intact);
-  if (force.size() + 1 == a.size()) // records kept (see drop_force_records)
+  if (!force_records_dropped && force.size() + 1 == a.size()) // records kept (drop_force_records)
   {
     force.push_back(Vec3::Zero());
     moment.push_back(Vec3::Zero());

@@ -35,10 +35,12 @@ struct BondStore
   std::vector<BondModel> model;
   std::vector<BondState> state;
   // Last recorded contact-point force and couple acting on particle b (global frame); filled
-  // on recording steps only (ParaView output, the static run's figures, a coupled run's band
-  // check), not on every step. 48 of the 154 bytes of a bond: a run that reads none of them
-  // drops them (drop_force_records), and then they stay empty.
+  // on recording steps only (the static run's figures, a coupled run's band check, the tests
+  // of the force loop), not on every step. 48 of the 154 bytes of a bond: explicit full-DEM
+  // runs drop them before the bonds are formed (their ParaView bond files evaluate each bond
+  // on demand, bond_contact_force in particle_stress.h), and then they stay empty.
   std::vector<Vec3> force, moment;
+  bool force_records_dropped = false; ///< set by drop_force_records: add() keeps none
 
   // Failure (bond_damage.h, bond_strength.h): one law for the store, strengths and damage per
   // bond (filled by assign_bond_strengths; empty while failure.mode is none).
@@ -53,9 +55,14 @@ struct BondStore
 
   std::size_t size() const { return a.size(); }
   /// Whether force / moment are kept (one entry per bond).
-  bool records_forces() const { return force.size() == a.size(); }
-  /// Frees force / moment; add() then no longer fills them.
-  void drop_force_records() { force = {}, moment = {}; }
+  bool records_forces() const { return !force_records_dropped && force.size() == a.size(); }
+  /// Frees force / moment; add() then no longer fills them (also on a store still empty, so
+  /// that bond formation never holds them).
+  void drop_force_records()
+  {
+    force = {}, moment = {};
+    force_records_dropped = true;
+  }
   bool has_failure() const { return failure.mode != FailureMode::none; }
   /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
   double load_factor(std::size_t k) const

@@ -39,6 +39,28 @@ Vec3 linear_bond_force(const ParticleStore& p, const BondStore& b, std::size_t k
 }
 } // namespace
 
+BondContactForce bond_contact_force(const ParticleStore& p, const BondStore& b, std::size_t k)
+{
+  if (!is_bonded(b.state[k]))
+    return {};
+  const int ia = b.a[k], ib = b.b[k];
+  const BondConstants c{b.rest_length[k],
+                        b.rest_axis[k],
+                        b.kn[k],
+                        b.ks[k],
+                        b.ktor[k],
+                        b.kben[k],
+                        b.contact_fraction[k],
+                        b.damping_force[k],
+                        b.damping_moment[k]};
+  BondForces f;
+  bond_law<true>(p.position[ia].data(), p.position[ib].data(), p.orientation[ia].coeffs().data(),
+                 p.orientation[ib].coeffs().data(), p.velocity[ia].data(), p.velocity[ib].data(),
+                 p.angular_velocity[ia].data(), p.angular_velocity[ib].data(), c, f);
+  const double carried = b.load_factor(k); // 1 - D of a softening bond (bond_damage.h)
+  return {carried * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]), carried * Vec3(f.Mc[0], f.Mc[1], f.Mc[2])};
+}
+
 void record_bond_forces(const ParticleStore& p, BondStore& b)
 {
   for (std::size_t k = 0; k < b.size(); ++k)

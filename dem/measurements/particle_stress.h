@@ -31,6 +31,19 @@ struct ParticleStresses
   double strain_energy = 0;   ///< J, elastic energy of the bonds ((1 - D) U_e if softening)
 };
 
+/// A bond's contact-point force and couple acting on particle b (global frame).
+struct BondContactForce
+{
+  Vec3 force = Vec3::Zero();  ///< N
+  Vec3 moment = Vec3::Zero(); ///< N m
+};
+
+/// Bond k's contact force and couple on b in the current state (positions, orientations, and
+/// velocities for its dashpots), times the share 1 - D it carries (zero once broken): the
+/// unified law of the force loop (bond_kernel.h), evaluated for one bond when it is needed
+/// (ParaView bond files), so that a run does not keep 48 bytes a bond of records for it.
+BondContactForce bond_contact_force(const ParticleStore& p, const BondStore& bonds, std::size_t k);
+
 /// Stores every unbroken bond's elastic contact force and couple (on b, times 1 - D) of the current
 /// configuration in bonds.force / bonds.moment (what the explicit solver records on its
 /// recording steps); for states the explicit solver did not produce (static solution).

@@ -84,6 +84,10 @@ struct RunConfig
   double particle_damping = 0;   ///< gamma (paper eq. 11-12)
   double mass_damping = 0;       ///< c (1/s): -c m v on the particles (explicit_solver.h)
   bool static_solver = false;    ///< true: linear static solve (static_solver.h) instead
+  /// Keep per-bond force records (BondStore::force, 48 bytes a bond): the static run's figures,
+  /// a coupled run's band check and the tests read them; an explicit full-DEM run does not
+  /// (its ParaView bond files evaluate each bond on demand) and sets this false.
+  bool bond_force_records = true;
 };
 
 struct MeasureConfig

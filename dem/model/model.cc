@@ -67,6 +67,8 @@ Model build_model(const CaseConfig& c)
   }
 
   c.bonds.material.validate("Bonds");
+  if (!c.run.bond_force_records) // before formation, so that the store never holds them
+    m.bonds.drop_force_records();
   if (c.bonds.explicit_bonds.empty())
     form_bonds(p, m.bonds, c.bonds.material, c.bonds.contact_radius_multiplier);
   else

@@ -69,9 +69,13 @@ void check_lengths(const BondStore& stored, const BondStore& model, const std::s
         stored.radius.size(), stored.damping_force.size(), stored.damping_moment.size(),
         stored.model.size(), stored.state.size()})
     check("(per-bond arrays)", size, n);
-  // force records: kept or dropped (BondStore::drop_force_records) as the model does
-  check("force", stored.force.size(), model.force.size());
-  check("moment", stored.moment.size(), model.moment.size());
+  // force records (output only): checked where the model keeps them; a checkpoint written
+  // while runs still kept them resumes into a model without them
+  if (model.records_forces())
+  {
+    check("force", stored.force.size(), model.force.size());
+    check("moment", stored.moment.size(), model.moment.size());
+  }
   // failure arrays: empty without a failure law, else one entry per bond
   check("tensile_strength", stored.tensile_strength.size(), model.tensile_strength.size());
   check("shear_strength", stored.shear_strength.size(), model.shear_strength.size());
@@ -121,6 +125,8 @@ std::vector<std::size_t> visit_bonds(StateArchive& a, BondStore& b)
     order[k] = *it;
   }
   stored.failure = b.failure;
+  if (!b.records_forces())
+    stored.drop_force_records();
   stored.reorder(order);
   b = std::move(stored);
   std::vector<std::size_t> bond_map(n);
