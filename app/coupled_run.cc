@@ -4,6 +4,7 @@
 #include "crack_output.h"
 #include "dem/measurements/measurements.h"
 #include "dem_parameters.h"
+#include "fem/fem_case.h"
 #include "particle_vtu.h"
 #include "provenance.h"
 #include "version.h"
@@ -15,7 +16,6 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
-#include <set>
 
 namespace dembridge::app
 {
@@ -321,30 +321,8 @@ private:
     history_.open(part, std::ios::app);
     if (!history_)
       throw std::runtime_error((dir_ / "history.csv").string() + ": cannot write");
-    remove_later_snapshots(problem.fe_parameters().base_name);
-  }
-
-  /// Removes the snapshot files the interrupted run wrote after its checkpoint (they are
-  /// written again): particles, bonds, cracks and the continuum's .vtu / .pvtu.
-  void remove_later_snapshots(const std::string& fe_base) const
-  {
-    std::set<std::string> listed, fe_listed;
-    for (const auto* files : {&vtu_.particle_files(), &vtu_.bond_files(), &cracks_.files()})
-      for (const auto& f : *files)
-        listed.insert(f.second);
-    for (const auto& f : fe_files_) // fem_0003.pvtu: its pieces are fem_0003.*.vtu
-      fe_listed.insert(f.second.substr(0, f.second.find('.')));
-    for (const auto& entry : std::filesystem::directory_iterator(dir_))
-    {
-      const std::string name = entry.path().filename().string();
-      const std::string ext = entry.path().extension().string();
-      const bool dem =
-          ext == ".vtu" && (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
-                            name.rfind("cracks_", 0) == 0);
-      const bool fe = (ext == ".vtu" || ext == ".pvtu") && name.rfind(fe_base + "_", 0) == 0;
-      if ((dem && !listed.count(name)) || (fe && !fe_listed.count(name.substr(0, name.find('.')))))
-        std::filesystem::remove(entry.path());
-    }
+    remove_later_dem_snapshots(dir_, vtu_, cracks_.files());
+    fem::remove_later_fe_snapshots(dir_, problem.fe_parameters().base_name, fe_files_);
   }
 
   std::filesystem::path dir_;

@@ -24,7 +24,6 @@
 #include <iomanip>
 #include <iostream>
 #include <optional>
-#include <set>
 
 namespace dembridge::app
 {
@@ -240,31 +239,7 @@ private:
     history_.open(history_path_.string() + ".part", std::ios::app);
     if (!history_)
       throw std::runtime_error(history_path_.string() + ": cannot write");
-    remove_later_snapshots();
-  }
-
-  /// Removes the snapshot files the interrupted run wrote after its checkpoint (they are
-  /// written again); warns of listed ones that are missing.
-  void remove_later_snapshots() const
-  {
-    std::set<std::string> listed;
-    for (const auto* files : {&vtu_.particle_files(), &vtu_.bond_files(), &cracks_.files()})
-      for (const auto& f : *files)
-        listed.insert(f.second);
-    for (const auto& entry : std::filesystem::directory_iterator(dir_))
-    {
-      const std::string name = entry.path().filename().string();
-      const bool snapshot = entry.path().extension() == ".vtu" &&
-                            (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
-                             name.rfind("cracks_", 0) == 0);
-      if (snapshot && !listed.count(name))
-        std::filesystem::remove(entry.path());
-    }
-    for (const auto& name : listed)
-      if (!std::filesystem::exists(dir_ / name))
-        std::printf("dembridge: warning: snapshot %s of the interrupted run is missing (its "
-                    "staging folder was cleared); the ParaView series lacks it\n",
-                    name.c_str());
+    remove_later_dem_snapshots(dir_, vtu_, cracks_.files());
   }
 
   const dem::Model& model_;

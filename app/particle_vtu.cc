@@ -5,6 +5,7 @@
 #include "particle_vtu_file.h"
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <type_traits>
 
 namespace dembridge::app
@@ -140,5 +141,28 @@ void ParticleVtuSeries::finish() const
   {
     write_pvd(dir_ / name, *files);
   }
+}
+
+void remove_later_dem_snapshots(const std::filesystem::path& dir, const ParticleVtuSeries& vtu,
+                                const std::vector<std::pair<double, std::string>>& crack_files)
+{
+  std::set<std::string> listed;
+  for (const auto* files : {&vtu.particle_files(), &vtu.bond_files(), &crack_files})
+    for (const auto& f : *files)
+      listed.insert(f.second);
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+  {
+    const std::string name = entry.path().filename().string();
+    const bool snapshot = entry.path().extension() == ".vtu" &&
+                          (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
+                           name.rfind("cracks_", 0) == 0);
+    if (snapshot && !listed.count(name))
+      std::filesystem::remove(entry.path());
+  }
+  for (const auto& name : listed)
+    if (!std::filesystem::exists(dir / name))
+      std::printf("dembridge: warning: snapshot %s of the interrupted run is missing (its "
+                  "staging folder was cleared); the ParaView series lacks it\n",
+                  name.c_str());
 }
 } // namespace dembridge::app

@@ -45,4 +45,11 @@ private:
   std::vector<std::string> group_names_;
   std::vector<std::pair<double, std::string>> particle_files_, bond_files_;
 };
+
+/// Removes the particle, bond and crack snapshots (particles_, bonds_, cracks_*.vtu) in @p dir
+/// that a run interrupted after its last checkpoint wrote: those not in the restored series of
+/// @p vtu and @p crack_files (they are written again). Warns of listed ones that are missing.
+void remove_later_dem_snapshots(const std::filesystem::path& dir, const ParticleVtuSeries& vtu,
+                                const std::vector<std::pair<double, std::string>>& crack_files);
+
 } // namespace dembridge::app

@@ -181,24 +181,6 @@ struct DynamicsLoopState
   }
 };
 
-/// Removes the snapshots an interrupted run wrote after its checkpoint (they are written
-/// again): BASE_NNNN.pvtu and its pieces BASE_NNNN.R.vtu not in the restored records.
-void remove_later_snapshots(const std::filesystem::path& dir, const std::string& base,
-                            const std::vector<std::pair<double, std::string>>& records)
-{
-  std::set<std::string> listed;
-  for (const auto& r : records)
-    listed.insert(r.second.substr(0, r.second.find('.')));
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-  {
-    const std::string name = entry.path().filename().string();
-    const std::string ext = entry.path().extension().string();
-    if ((ext == ".vtu" || ext == ".pvtu") && name.rfind(base + "_", 0) == 0 &&
-        !listed.count(name.substr(0, name.find('.'))))
-      std::filesystem::remove(entry.path());
-  }
-}
-
 // Explicit dynamics: n steps of size factor * dt_stable; history.csv with the probe
 // displacements and the energies; the natural frequency from the zero crossings of the first
 // probe's dominant displacement component (free vibration about u = 0). With checkpoints the
@@ -250,7 +232,7 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     problem.scatter_state(); // collective: each rank's part of the continuum
     broadcast_state(comm, [&](dem::StateArchive& a) { loop.visit(a); });
     if (root)
-      remove_later_snapshots(output_dir, p.base_name, problem.snapshot_records());
+      remove_later_fe_snapshots(output_dir, p.base_name, problem.snapshot_records());
   }
   // history.csv: the rows so far (a resumed run's from its checkpoint), then one per step
   const auto history_path = output_dir / "history.csv";
@@ -381,6 +363,22 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   return summary;
 }
 } // namespace
+
+void remove_later_fe_snapshots(const std::filesystem::path& dir, const std::string& base,
+                               const std::vector<std::pair<double, std::string>>& records)
+{
+  std::set<std::string> listed; // fem_0003.pvtu: its pieces are fem_0003.*.vtu
+  for (const auto& r : records)
+    listed.insert(r.second.substr(0, r.second.find('.')));
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+  {
+    const std::string name = entry.path().filename().string();
+    const std::string ext = entry.path().extension().string();
+    if ((ext == ".vtu" || ext == ".pvtu") && name.rfind(base + "_", 0) == 0 &&
+        !listed.count(name.substr(0, name.find('.'))))
+      std::filesystem::remove(entry.path());
+  }
+}
 
 nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path& output_dir,
                         MPI_Comm comm, const DynamicsCheckpoints* checkpoints)

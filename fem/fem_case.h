@@ -10,6 +10,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace dembridge::dem
 {
@@ -38,6 +41,12 @@ struct DynamicsCheckpoints
   std::function<void(const Visit&)> read;
   std::function<void(long step)> after_step; ///< called after every step (tests); may be empty
 };
+
+/// Removes the continuum snapshots in @p dir that a run interrupted after its last checkpoint
+/// wrote (they are written again on resume): BASE_NNNN.pvtu and its pieces BASE_NNNN.R.vtu not
+/// among the restored @p records (time, file name). Used by FE and coupled resumes alike.
+void remove_later_fe_snapshots(const std::filesystem::path& dir, const std::string& base,
+                               const std::vector<std::pair<double, std::string>>& records);
 
 /// Run the case described by @p prm (already parsed): static elasticity or explicit dynamics.
 /// Writes ParaView files (.vtu/.pvtu/.pvd) and history.csv (dynamics) into @p output_dir and
