@@ -256,7 +256,17 @@ template <bool record> void ExplicitSolver::integrate()
       c = std::cos(a);
       s = std::sin(a) / a;
     }
-    q[i] = (Quat(c, s * h.x(), s * h.y(), s * h.z()) * q[i]).normalized();
+    Quat qn = Quat(c, s * h.x(), s * h.y(), s * h.z()) * q[i];
+    // A unit quaternion times a unit one: |qn|^2 = 1 + eps, eps at roundoff. One Newton step for
+    // 1 / sqrt(|qn|^2) from 1, (3 - |qn|^2) / 2, normalises it to roundoff without the square
+    // root and division of normalized(), whose latency was most of this loop's time (an
+    // orientation set by hand far from unit length takes the exact path).
+    const double n2 = qn.squaredNorm();
+    if (std::abs(n2 - 1.0) < 1e-8)
+      qn.coeffs() *= 0.5 * (3.0 - n2);
+    else
+      qn.normalize();
+    q[i] = qn;
     if constexpr (record)
     {
       // eq. 49, time-centred at t_n as 1/2 m v^{n-1/2}.v^{n+1/2}: the form the leapfrog
