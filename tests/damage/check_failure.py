@@ -4,6 +4,10 @@
     check_failure.py ratio A.json B.json KEY EXPECTED TOL   B[KEY] / A[KEY] = EXPECTED within TOL
                                                            (relative)
     check_failure.py change A.json B.json KEY TOL           |B[KEY] / A[KEY] - 1| < TOL
+    check_failure.py first_break_change A.csv B.csv COLUMN TOL
+                                                           |B / A - 1| < TOL for |COLUMN| of
+                                                           history.csv on the first record with a
+                                                           broken bond (the load at first failure)
     check_failure.py differ A.json B.json KEY               the values differ (seed scatter)
     check_failure.py scatter KEY A.json B.json...           the values over runs (seeds): mean,
                                                            standard deviation, range; all differ
@@ -77,6 +81,19 @@ def main(argv):
         va, vb = value(a, key), value(b, key)
         check(abs(vb / va - 1) < tol,
               f"{key}: {va:.6g} -> {vb:.6g}, change {vb / va - 1:+.3%} (limit {tol:.2%})")
+    elif cmd == "first_break_change":
+        a, b, column, tol = argv[2], argv[3], argv[4], float(argv[5])
+
+        def first_break(path):
+            for row in csv.DictReader(open(path)):
+                if float(row["n_broken_bonds"]) > 0:
+                    return abs(float(row[column])), float(row["time"])
+            raise SystemExit(f"FAIL {path}: no record with a broken bond")
+
+        (va, ta), (vb, tb) = first_break(a), first_break(b)
+        check(abs(vb / va - 1) < tol,
+              f"|{column}| at the first break: {va:.6g} (t = {ta:.6g} s) -> {vb:.6g} "
+              f"(t = {tb:.6g} s), change {vb / va - 1:+.3%} (limit {tol:.2%})")
     elif cmd == "differ":
         a, b, key = argv[2], argv[3], argv[4]
         va, vb = value(a, key), value(b, key)
