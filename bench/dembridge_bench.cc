@@ -212,7 +212,7 @@ int main(int argc, char** argv)
       m["bonds_per_particle"] = nb / np;
       m["bytes_per_bond"] = double(b.memory_bytes()) / nb;
       // what the static run and coupled runs add: the per-bond force records (48 bytes a bond)
-      m["bond_force_records_if_kept"] = 48.0 * nb / np;
+      m["bond_force_records_if_kept"] = double(2 * sizeof(Vec3)) * nb / np;
       j["bytes_per_particle"] = m;
     }
     j["runs"].push_back(run);

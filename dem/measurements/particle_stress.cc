@@ -9,17 +9,39 @@ namespace dembridge::dem
 {
 namespace
 {
+/// The unified bond law at the current state; with dashpots it reads the particles' velocities.
+template <bool dashpots>
+BondForces bond_law_now(const ParticleStore& p, const BondStore& b, std::size_t k)
+{
+  const int ia = b.a[k], ib = b.b[k];
+  const BondConstants c{b.rest_length[k],
+                        b.rest_axis[k],
+                        b.kn[k],
+                        b.ks[k],
+                        b.ktor[k],
+                        b.kben[k],
+                        b.contact_fraction[k],
+                        b.damping_force[k],
+                        b.damping_moment[k]};
+  BondForces f; // without dashpots bond_law reads no velocity
+  bond_law<dashpots>(p.position[ia].data(), p.position[ib].data(),
+                     p.orientation[ia].coeffs().data(), p.orientation[ib].coeffs().data(),
+                     p.velocity[ia].data(), p.velocity[ib].data(), p.angular_velocity[ia].data(),
+                     p.angular_velocity[ib].data(), c, f);
+  return f;
+}
+
 /// The elastic bond law at the current configuration (no dashpots: velocities are not read).
 BondForces elastic_bond_forces(const ParticleStore& p, const BondStore& b, std::size_t k)
 {
-  const int ia = b.a[k], ib = b.b[k];
-  const BondConstants c{b.rest_length[k], b.rest_axis[k],        b.kn[k], b.ks[k], b.ktor[k],
-                        b.kben[k],        b.contact_fraction[k], 0.0,     0.0};
-  const double* none = nullptr;
-  BondForces f;
-  bond_law<false>(p.position[ia].data(), p.position[ib].data(), p.orientation[ia].coeffs().data(),
-                  p.orientation[ib].coeffs().data(), none, none, none, none, c, f);
-  return f;
+  return bond_law_now<false>(p, b, k);
+}
+
+/// The contact force and couple on b that bond k carries: the law's, times 1 - D (bond_damage.h).
+BondContactForce carried(const BondStore& b, std::size_t k, const BondForces& f)
+{
+  const double share = b.load_factor(k);
+  return {share * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]), share * Vec3(f.Mc[0], f.Mc[1], f.Mc[2])};
 }
 
 /// Force on b of the linearised law: -(K u) restricted to b's translation, K = R K_local R^T.
@@ -43,22 +65,7 @@ BondContactForce bond_contact_force(const ParticleStore& p, const BondStore& b, 
 {
   if (!is_bonded(b.state[k]))
     return {};
-  const int ia = b.a[k], ib = b.b[k];
-  const BondConstants c{b.rest_length[k],
-                        b.rest_axis[k],
-                        b.kn[k],
-                        b.ks[k],
-                        b.ktor[k],
-                        b.kben[k],
-                        b.contact_fraction[k],
-                        b.damping_force[k],
-                        b.damping_moment[k]};
-  BondForces f;
-  bond_law<true>(p.position[ia].data(), p.position[ib].data(), p.orientation[ia].coeffs().data(),
-                 p.orientation[ib].coeffs().data(), p.velocity[ia].data(), p.velocity[ib].data(),
-                 p.angular_velocity[ia].data(), p.angular_velocity[ib].data(), c, f);
-  const double carried = b.load_factor(k); // 1 - D of a softening bond (bond_damage.h)
-  return {carried * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]), carried * Vec3(f.Mc[0], f.Mc[1], f.Mc[2])};
+  return carried(b, k, bond_law_now<true>(p, b, k));
 }
 
 void record_bond_forces(const ParticleStore& p, BondStore& b)
@@ -67,10 +74,9 @@ void record_bond_forces(const ParticleStore& p, BondStore& b)
   {
     if (!is_bonded(b.state[k]))
       continue;
-    const BondForces f = elastic_bond_forces(p, b, k);
-    const double carried = b.load_factor(k); // 1 - D of a softening bond (bond_damage.h)
-    b.force[k] = carried * Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
-    b.moment[k] = carried * Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);
+    const BondContactForce f = carried(b, k, elastic_bond_forces(p, b, k));
+    b.force[k] = f.force;
+    b.moment[k] = f.moment;
   }
 }
 
