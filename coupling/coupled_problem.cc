@@ -397,7 +397,9 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
     rho_[k] += points_[k];
   last_iterations_ = multipliers_.solve(rho_, dt, q_);
 
-  lead_q_ = 0;
+  // the works summed in locals: members would be stored at every term (the force array could
+  // alias them for the compiler), a chain through memory
+  double work_q = work_q_particles_, lead_q = 0;
   if (root_)
     for (std::size_t k = 0; k < n; ++k)
     {
@@ -407,10 +409,12 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
       for (int d = 0; d < 3; ++d)
       {
         const double v1 = v_trial_p_[3 * k + d] + dt * q[d] / p.mass[i];
-        work_q_particles_ += q[d] * 0.5 * (v_before_p_[3 * k + d] + v1) * dt;
-        lead_q_ += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
+        work_q += q[d] * 0.5 * (v_before_p_[3 * k + d] + v1) * dt;
+        lead_q += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
       }
     }
+  work_q_particles_ = work_q;
+  lead_q_ = lead_q;
   // the FE nodes take -G^T q (= -M y after a factorised solve: no spread)
   if (!multipliers_.slot_reaction(slots_force_))
   {

@@ -204,6 +204,55 @@ void MultiplierSolver::solve_factorised(const std::vector<double>& b, std::vecto
       q[3 * p + c] = (b[3 * p + c] - points_[3 * p + c]) / inv_m_[p];
 }
 
+namespace
+{
+/// y_e = A^-1 r_e for E right-hand sides of length m (SoA), A^-1 symmetric (its rows are its
+/// columns): y = sum_j (column j) r_j, the updates running along i in lanes (a dot product per
+/// row would be a reduction, which strict floating point keeps scalar). Rows go in chunks of
+/// 16 whose E sums stay in registers over the whole j loop, instead of a load and a store of y
+/// for every column; each y_i still sums in column order.
+template <int E>
+void block_product(const double* __restrict inverse, const std::size_t m,
+                   const double* __restrict r, double* __restrict y)
+{
+  constexpr std::size_t chunk = 16;
+  for (std::size_t i0 = 0; i0 < m; i0 += chunk)
+  {
+    if (i0 + chunk <= m)
+    {
+      double sum[E][chunk] = {};
+      for (std::size_t j = 0; j < m; ++j)
+      {
+        const double* __restrict column = inverse + j * m + i0;
+        for (int e = 0; e < E; ++e)
+        {
+          const double rj = r[e * m + j];
+          // why: deal.II's flags end in -O2, where GCC 12 vectorises only the cheapest loops
+#pragma omp simd
+          for (std::size_t i = 0; i < chunk; ++i)
+            sum[e][i] += column[i] * rj;
+        }
+      }
+      for (int e = 0; e < E; ++e)
+        for (std::size_t i = 0; i < chunk; ++i)
+          y[e * m + i0 + i] = sum[e][i];
+      continue;
+    }
+    const std::size_t rows = m - i0; // the last, shorter chunk
+    for (int e = 0; e < E; ++e)
+      std::fill(y + e * m + i0, y + e * m + m, 0.0);
+    for (std::size_t j = 0; j < m; ++j)
+      for (int e = 0; e < E; ++e)
+      {
+        const double rj = r[e * m + j];
+#pragma omp simd
+        for (std::size_t i = 0; i < rows; ++i)
+          y[e * m + i0 + i] += inverse[j * m + i0 + i] * rj;
+      }
+  }
+}
+} // namespace
+
 // slots_ = A^-1 slots_ per component, group by group (the right-hand side zero on a slot
 // component that does not move, where A is the identity and y = 0).
 void MultiplierSolver::solve_blocks()
@@ -223,24 +272,11 @@ void MultiplierSolver::solve_blocks()
           const std::size_t i = 3 * b.slots[j] + (shared_factor_ ? e : c0);
           r[e * m + j] = inv_M_[i] > 0 ? slots_[i] : 0.0;
         }
-      // y = sum_j (column j of A^-1) r_j: the updates run along i in lanes (a dot product per
-      // row would be a reduction, which strict floating point keeps scalar); A^-1 is symmetric,
-      // so its rows are its columns
       double* y = block_y_.data();
-      std::fill(y, y + n_components * m, 0.0);
-      for (std::size_t j = 0; j < m; ++j)
-      {
-        const double* __restrict column = &b.inverse[j * m];
-        for (int e = 0; e < n_components; ++e)
-        {
-          const double rj = r[e * m + j];
-          double* __restrict ye = y + e * m; // no alias of A^-1: in lanes
-          // why: deal.II's flags end in -O2, where GCC 12 vectorises only the cheapest loops
-#pragma omp simd
-          for (std::size_t i = 0; i < m; ++i)
-            ye[i] += column[i] * rj;
-        }
-      }
+      if (n_components == 3)
+        block_product<3>(b.inverse.data(), m, r, y);
+      else
+        block_product<1>(b.inverse.data(), m, r, y);
       for (std::size_t i = 0; i < m; ++i)
         for (int e = 0; e < n_components; ++e)
           slots_[3 * b.slots[i] + (shared_factor_ ? e : c0)] = y[e * m + i];

@@ -104,6 +104,22 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
       row_slot_.push_back(slot), row_value_.push_back(N);
     row_ptr_.push_back(unsigned(row_slot_.size()));
   }
+  // The same rows by slot (G^T in compressed columns), points ascending within each slot.
+  col_ptr_.assign(slot_of.size() + 1, 0);
+  for (const unsigned int slot : row_slot_)
+    ++col_ptr_[slot + 1];
+  for (std::size_t k = 0; k < slot_of.size(); ++k)
+    col_ptr_[k + 1] += col_ptr_[k];
+  col_point_.resize(row_slot_.size());
+  col_value_.resize(row_slot_.size());
+  std::vector<unsigned int> next(col_ptr_.begin(), col_ptr_.end() - 1);
+  for (std::size_t p = 0; p + 1 < row_ptr_.size(); ++p)
+    for (unsigned int k = row_ptr_[p]; k < row_ptr_[p + 1]; ++k)
+    {
+      const unsigned int at = next[row_slot_[k]]++;
+      col_point_[at] = unsigned(p);
+      col_value_[at] = row_value_[k];
+    }
 
   // Local-form positions of the slot DoFs.
   ghosted_.reinit(fe.owned_dofs(), fe.relevant_dofs(), comm_);
@@ -205,17 +221,25 @@ void PointTransfer::interpolate(const std::vector<double>& slots, std::vector<do
     MPI_Allreduce(MPI_IN_PLACE, points.data(), int(points.size()), MPI_DOUBLE, MPI_SUM, comm_);
 }
 
+// Slot by slot over G^T's columns: each slot's sum stays in registers (point by point over the
+// rows, consecutive points add into the same slots, a chain through memory); the terms are
+// added in the same order (points ascending).
 void PointTransfer::spread(const std::vector<double>& points, std::vector<double>& slots) const
 {
-  slots.assign(slot_local_.size(), 0.0);
-  for (std::size_t p = 0; p < n_points_; ++p)
-    for (unsigned int k = row_ptr_[p]; k < row_ptr_[p + 1]; ++k)
+  slots.resize(slot_local_.size());
+  const std::size_t n_slots = slot_local_.size() / 3;
+  for (std::size_t s = 0; s < n_slots; ++s)
+  {
+    double x = 0, y = 0, z = 0;
+    for (unsigned int k = col_ptr_[s]; k < col_ptr_[s + 1]; ++k)
     {
-      const double N = row_value_[k];
-      double* s = &slots[3 * row_slot_[k]];
-      s[0] += N * points[3 * p];
-      s[1] += N * points[3 * p + 1];
-      s[2] += N * points[3 * p + 2];
+      const double N = col_value_[k];
+      const double* v = &points[3 * std::size_t(col_point_[k])];
+      x += N * v[0];
+      y += N * v[1];
+      z += N * v[2];
     }
+    slots[3 * s] = x, slots[3 * s + 1] = y, slots[3 * s + 2] = z;
+  }
 }
 } // namespace dembridge::coupling

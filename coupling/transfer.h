@@ -59,6 +59,9 @@ private:
   std::size_t n_points_ = 0;
   std::vector<unsigned int> row_ptr_, row_slot_;
   std::vector<double> row_value_;
+  /// the rows by slot (spread): entries [col_ptr[s], col_ptr[s+1]) of (point, N)
+  std::vector<unsigned int> col_ptr_, col_point_;
+  std::vector<double> col_value_;
   /// per slot and component: the index into this rank's local form of a ghosted FE vector
   /// (owned entries first, then the ghosts in the order of the ghost IndexSet)
   std::vector<unsigned int> slot_local_;
