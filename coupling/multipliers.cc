@@ -333,9 +333,6 @@ unsigned int MultiplierSolver::solve(const std::vector<double>& rho, const doubl
     for (auto& v : b_)
       v /= dt;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    x_[i] = b_[i] / diagonal_[i]; // the lumped solve, and the start of CG
-  unsigned int iterations = 0;
   residual_ = 0;
   if (factorised_) // S factorised: q = S^-1 b; S q = b to round-off
   {
@@ -343,6 +340,9 @@ unsigned int MultiplierSolver::solve(const std::vector<double>& rho, const doubl
     Sq_ = b_;
     return 0;
   }
+  for (std::size_t i = 0; i < n; ++i)
+    x_[i] = b_[i] / diagonal_[i]; // the lumped solve, and the start of CG
+  unsigned int iterations = 0;
   if (solve_ == ConstraintSolve::exact)
   {
     // Preconditioned conjugate gradients, preconditioner diag(A 1).
