@@ -64,10 +64,6 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0.0, 0.9));
   app.add_option("--json", json_file, "Also write the result to this file");
   app.add_option("--csv", csv_file, "Write the (last) packing to this particle file");
-  std::vector<int> thread_counts{1};
-  app.add_option("--threads", thread_counts,
-                 "Thread counts, each radius packed once per count (the same packing)")
-      ->check(CLI::Range(1, 256));
   CLI11_PARSE(app, argc, argv);
 
   nlohmann::json out;
@@ -76,41 +72,38 @@ int main(int argc, char** argv)
   out["distribution"] = spread > 0 ? "uniform" : "mono";
   out["radius_spread"] = spread;
   for (double r : radii)
-    for (int threads : thread_counts)
+  {
+    RandomPackingSettings s;
+    s.mean_radius = r;
+    s.seed = seed;
+    if (spread > 0)
     {
-      RandomPackingSettings s;
-      s.threads = threads;
-      s.mean_radius = r;
-      s.seed = seed;
-      if (spread > 0)
-      {
-        s.distribution = RandomPackingSettings::Distribution::uniform;
-        s.radius_spread = spread;
-      }
-      ParticleStore p;
-      const double c0 = process_cpu_seconds();
-      const RandomPackingReport rep = generate_random_packing(s, 917, p);
-      const double cpu = process_cpu_seconds() - c0;
-      nlohmann::json j;
-      j["radius_m"] = r;
-      j["threads"] = threads;
-      j["particles"] = rep.particles;
-      j["removed"] = rep.removed;
-      j["wall_seconds"] = rep.seconds;
-      j["cpu_seconds"] = cpu;
-      j["iterations"] = rep.iterations;
-      j["microseconds_per_particle_iteration"] =
-          1e6 * cpu / (double(rep.particles) * double(rep.iterations));
-      j["porosity"] = rep.porosity;
-      j["coordination_1.02"] = rep.mean_coordination_contact;
-      j["max_overlap_ratio"] = rep.max_overlap_ratio;
-      j["radius_scale"] = rep.radius_scale;
-      j["fingerprint"] = fingerprint(p);
-      std::cerr << j.dump() << "\n";
-      out["points"].push_back(j);
-      if (!csv_file.empty())
-        write_particle_file(csv_file, p);
+      s.distribution = RandomPackingSettings::Distribution::uniform;
+      s.radius_spread = spread;
     }
+    ParticleStore p;
+    const double c0 = process_cpu_seconds();
+    const RandomPackingReport rep = generate_random_packing(s, 917, p);
+    const double cpu = process_cpu_seconds() - c0;
+    nlohmann::json j;
+    j["radius_m"] = r;
+    j["particles"] = rep.particles;
+    j["removed"] = rep.removed;
+    j["wall_seconds"] = rep.seconds;
+    j["cpu_seconds"] = cpu;
+    j["iterations"] = rep.iterations;
+    j["microseconds_per_particle_iteration"] =
+        1e6 * cpu / (double(rep.particles) * double(rep.iterations));
+    j["porosity"] = rep.porosity;
+    j["coordination_1.02"] = rep.mean_coordination_contact;
+    j["max_overlap_ratio"] = rep.max_overlap_ratio;
+    j["radius_scale"] = rep.radius_scale;
+    j["fingerprint"] = fingerprint(p);
+    std::cerr << j.dump() << "\n";
+    out["points"].push_back(j);
+    if (!csv_file.empty())
+      write_particle_file(csv_file, p);
+  }
   std::cout << out.dump(2) << "\n";
   if (!json_file.empty())
     std::ofstream(json_file) << out.dump(2) << "\n";

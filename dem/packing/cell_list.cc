@@ -44,12 +44,6 @@ CellList::CellList(const std::vector<Vec3>& x, double cell_size) : h_(cell_size)
     sorted_[k] = x[cell_particles_[k]];
 }
 
-long CellList::first_cell_from_slot(const std::size_t k) const
-{
-  const auto at = std::lower_bound(cell_start_.begin(), cell_start_.end() - 1, int(k));
-  return long(at - cell_start_.begin());
-}
-
 long CellList::cell_index(const Vec3& x) const
 {
   long c[3];

@@ -6,7 +6,6 @@
 // their particles by index) is part of the contract: bond numbering and the random packing's
 // floating-point sums follow it.
 #include "dem/core/types.h"
-#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -24,13 +23,8 @@ public:
   /// The same visit as for_each_pair, one level lower: f(i, centre_i, slots, begin, end) for
   /// every particle i and every neighbouring cell (slots [begin, end) of particle(), centre();
   /// their indices ascend), without the distance and index filters. For loops that filter
-  /// without branches. Only the cells [first_cell, end_cell) when given (-1: to the last), so
-  /// that threads can visit consecutive ranges and concatenate in the same order.
-  template <class F>
-  void for_each_neighbour_cell(F&& f, long first_cell = 0, long end_cell = -1) const;
-  long n_cells() const { return n_[0] * n_[1] * n_[2]; }
-  /// The first cell whose particles start at slot @p k or later (n_cells() past the last).
-  long first_cell_from_slot(std::size_t k) const;
+  /// without branches.
+  template <class F> void for_each_neighbour_cell(F&& f) const;
   const int* particle() const { return cell_particles_.data(); } ///< index in slot k
   const Vec3* centre() const { return sorted_.data(); }          ///< centre in slot k
   double cell_size() const { return h_; }
@@ -44,31 +38,31 @@ private:
   long cell_index(const Vec3& x) const;
 };
 
-template <class F>
-void CellList::for_each_neighbour_cell(F&& f, const long first_cell, const long end_cell) const
+template <class F> void CellList::for_each_neighbour_cell(F&& f) const
 {
   std::array<long, 27> neighbours;
-  const long last = end_cell < 0 ? n_cells() : std::min(end_cell, n_cells());
-  for (long c = std::max(0L, first_cell); c < last; ++c)
-  {
-    if (cell_start_[c] == cell_start_[c + 1])
-      continue;
-    const long cx = c % n_[0], cy = (c / n_[0]) % n_[1], cz = c / (n_[0] * n_[1]);
-    int count = 0;
-    for (long dz = -1; dz <= 1; ++dz)
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dx = -1; dx <= 1; ++dx)
-        {
-          const long nx = cx + dx, ny = cy + dy, nz = cz + dz;
-          if (nx < 0 || ny < 0 || nz < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
-            continue;
-          neighbours[count++] = (nz * n_[1] + ny) * n_[0] + nx;
-        }
-    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
-      for (int q = 0; q < count; ++q)
-        f(cell_particles_[k], sorted_[k], cell_start_[neighbours[q]],
-          cell_start_[neighbours[q] + 1]);
-  }
+  for (long cz = 0; cz < n_[2]; ++cz)
+    for (long cy = 0; cy < n_[1]; ++cy)
+      for (long cx = 0; cx < n_[0]; ++cx)
+      {
+        const long c = (cz * n_[1] + cy) * n_[0] + cx;
+        if (cell_start_[c] == cell_start_[c + 1])
+          continue;
+        int count = 0;
+        for (long dz = -1; dz <= 1; ++dz)
+          for (long dy = -1; dy <= 1; ++dy)
+            for (long dx = -1; dx <= 1; ++dx)
+            {
+              const long nx = cx + dx, ny = cy + dy, nz = cz + dz;
+              if (nx < 0 || ny < 0 || nz < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
+                continue;
+              neighbours[count++] = (nz * n_[1] + ny) * n_[0] + nx;
+            }
+        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+          for (int q = 0; q < count; ++q)
+            f(cell_particles_[k], sorted_[k], cell_start_[neighbours[q]],
+              cell_start_[neighbours[q] + 1]);
+      }
 }
 
 template <class F> void CellList::for_each_pair(const std::vector<Vec3>& x, F&& f) const

@@ -13,11 +13,6 @@
 // only computes the pairs' terms eight at a time with the same correctly rounded operations.
 // Included only by packing_random.cc, which is built without fused multiply-adds
 // (dem/CMakeLists.txt), so both paths give bitwise the same packing on every CPU.
-// Threads (vector path): the list is cut into one chunk of pairs per thread; each thread packs
-// its chunk's contacts into its own segment of the contact buffers (a segment holds as many
-// slots as its chunk has pairs, plus eight of padding for the full-width stores) and computes
-// their terms; the sums then run over the segments in order, one contact at a time, as on one
-// thread: the same bits for any thread count.
 #include "dem/core/types.h"
 #include <algorithm>
 #include <cmath>
@@ -53,10 +48,9 @@ struct OverlapSums
 class OverlapForces
 {
 public:
-  /// f_out = the overlap forces of the pairs at radius scale s (f_out sized like x_in), the
-  /// pairs' terms on up to @p threads threads (vector path).
+  /// f_out = the overlap forces of the pairs at radius scale s (f_out sized like x_in).
   OverlapSums compute(const OverlapPairs& pairs, const std::vector<Vec3>& x_in, double s,
-                      std::vector<Vec3>& f_out, bool vector_path = true, int threads = 1)
+                      std::vector<Vec3>& f_out, bool vector_path = true)
   {
     std::fill(f_out.begin(), f_out.end(), Vec3::Zero());
     (void)vector_path; // why: read by the vector path only
@@ -73,79 +67,26 @@ public:
       ++contacts;
     };
     std::size_t k = 0;
-    (void)threads; // why: read by the vector path only
 #if defined(__AVX512F__)
+    // Pass 1: the pairs in contact, eight pairs a step, packed in list order into the contact
+    // buffers (their centre distance vectors, squared distances, radius sums and smaller radii).
     const double* X = x_in.empty() ? nullptr : x_in[0].data();
-    const std::size_t np = vector_path ? pairs.i.size() - pairs.i.size() % 8 : 0;
-    const int T = std::max(1, std::min(threads, int(np / 1024) + 1)); // >= 1024 pairs a thread
-    // chunk t: pairs [8 floor(t np / 8T), ...), its contacts from slot start(t) + 8 t
-    auto chunk_start = [&](int t)
-    { return (np * std::size_t(t) / std::size_t(T)) & ~std::size_t(7); };
-    const std::size_t slots = np + 8 * std::size_t(T + 1);
-    if (contact_.size() < 10 * slots)
-      contact_.resize(10 * slots);
-    if (contact_pair_.size() < 2 * slots)
-      contact_pair_.resize(2 * slots);
-    segment_count_.resize(std::size_t(T));
-    segment_worst_.resize(std::size_t(T));
-#pragma omp parallel for num_threads(T) schedule(static, 1)
-    for (int t = 0; t < T; ++t)
-    {
-      const std::size_t first = chunk_start(t), last = t + 1 < T ? chunk_start(t + 1) : np;
-      const std::size_t base = first + 8 * std::size_t(t);
-      const std::size_t nc = pack_contacts(pairs, X, s, first, last, base, slots) - base;
-      segment_count_[std::size_t(t)] = nc;
-      segment_worst_[std::size_t(t)] = contact_terms(s, base, nc, slots);
-    }
-    k = np;
-    // The sums, one contact at a time in list order, on one thread: the overlap sum is one
-    // chain of additions (4 cycles each), which bounds this loop whatever takes the forces.
-    const double* const cfx = contact_.data() + 6 * slots;
-    const double *const cfy = cfx + slots, *const cfz = cfy + slots, *const cdelta = cfz + slots;
-    const int* const ci = contact_pair_.data();
-    const int* const cj = ci + slots;
-    for (int t = 0; t < T; ++t)
-    {
-      worst = std::max(worst, segment_worst_[std::size_t(t)]);
-      const std::size_t base = chunk_start(t) + 8 * std::size_t(t);
-      for (std::size_t c = base; c < base + segment_count_[std::size_t(t)]; ++c)
-        add(ci[c], cj[c], Vec3(cfx[c], cfy[c], cfz[c]), cdelta[c]);
-    }
-#endif
-    for (; k < pairs.i.size(); ++k)
-    {
-      const int i = pairs.i[k], j = pairs.j[k];
-      const Vec3 d = x[j] - x[i];
-      const double sum = s * pairs.radius_sum[k], d2 = d.squaredNorm();
-      if (d2 >= sum * sum)
-        continue;
-      const double dist = std::sqrt(d2), delta = sum - dist;
-      // why: coincident centres have no normal: separate them along x
-      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
-      add(i, j, Vec3(delta * n), delta);
-      worst = std::max(worst, delta / (s * pairs.radius_min[k]));
-    }
-    return {sum_overlap, worst, contacts};
-  }
-
-private:
-#if defined(__AVX512F__)
-  /// Pairs [first, last) (a multiple of eight long): the pairs in contact, eight pairs a step,
-  /// packed in list order into the contact buffers from slot @p base (their centre distance
-  /// vectors, squared distances, radius sums and smaller radii; each buffer @p slots long).
-  /// Returns the slot after the last contact.
-  std::size_t pack_contacts(const OverlapPairs& pairs, const double* X, double s, std::size_t first,
-                            std::size_t last, std::size_t base, std::size_t slots)
-  {
-    double* const cx = contact_.data();
-    double *const cy = cx + slots, *const cz = cy + slots, *const cd2 = cz + slots;
-    double *const csum = cd2 + slots, *const cmin = csum + slots;
-    int* const ci = contact_pair_.data();
-    int* const cj = ci + slots;
-    const __m512d vs = _mm512_set1_pd(s);
+    const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
     const __m256i three = _mm256_set1_epi32(3);
-    std::size_t nc = base;
-    for (std::size_t k = first; k < last; k += 8)
+    const std::size_t np = vector_path ? pairs.i.size() - pairs.i.size() % 8 : 0;
+    if (contact_.size() < 10 * (np + 8))
+      contact_.resize(10 * (np + 8));
+    double* const cx = contact_.data();
+    double *const cy = cx + np + 8, *const cz = cy + np + 8, *const cd2 = cz + np + 8;
+    double *const csum = cd2 + np + 8, *const cmin = csum + np + 8;
+    double *const cfx = cmin + np + 8, *const cfy = cfx + np + 8, *const cfz = cfy + np + 8;
+    double* const cdelta = cfz + np + 8;
+    if (contact_pair_.size() < 2 * (np + 8))
+      contact_pair_.resize(2 * (np + 8));
+    int* const ci = contact_pair_.data();
+    int* const cj = ci + np + 8;
+    std::size_t nc = 0;
+    for (; k < np; k += 8)
     {
       const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.i[k]));
       const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.j[k]));
@@ -177,25 +118,12 @@ private:
                           _mm256_maskz_compress_epi32(touching, vj));
       nc += std::size_t(__builtin_popcount(touching));
     }
-    return nc;
-  }
-
-  /// The terms of contacts [base, base + n), eight contacts a step (lanes past the last
-  /// contact are masked off; the full-width stores stay inside the segment's padding).
-  /// Returns the largest delta / (s min(R_i, R_j)).
-  double contact_terms(double s, std::size_t base, std::size_t n, std::size_t slots)
-  {
-    double* const cx = contact_.data();
-    double *const cy = cx + slots, *const cz = cy + slots, *const cd2 = cz + slots;
-    double *const csum = cd2 + slots, *const cmin = csum + slots;
-    double *const cfx = cmin + slots, *const cfy = cfx + slots, *const cfz = cfy + slots;
-    double* const cdelta = cfz + slots;
-    const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
+    // Pass 2: the contacts' terms, eight contacts a step (lanes past the last contact are
+    // masked off).
     __m512d vworst = zero;
-    for (std::size_t c = base; c < base + n; c += 8)
+    for (std::size_t c = 0; c < nc; c += 8)
     {
-      const std::size_t left = base + n - c;
-      const __mmask8 live = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1);
+      const __mmask8 live = nc - c >= 8 ? __mmask8(0xff) : __mmask8((1u << (nc - c)) - 1);
       const __m512d d2 = _mm512_maskz_loadu_pd(live, cd2 + c);
       const __m512d dist = _mm512_sqrt_pd(d2);
       const __m512d delta = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, csum + c), dist);
@@ -212,12 +140,29 @@ private:
           live, delta, _mm512_mul_pd(vs, _mm512_mask_loadu_pd(one, live, cmin + c)));
       vworst = _mm512_mask_max_pd(vworst, live, vworst, ratio); // max: exact in any order
     }
-    return _mm512_reduce_max_pd(vworst);
-  }
+    worst = _mm512_reduce_max_pd(vworst);
+    // Pass 3: the sums, one contact at a time in list order.
+    for (std::size_t c = 0; c < nc; ++c)
+      add(ci[c], cj[c], Vec3(cfx[c], cfy[c], cfz[c]), cdelta[c]);
 #endif
-  std::vector<double> contact_;            // vector path: per-contact scratch (10 arrays)
-  std::vector<int> contact_pair_;          // vector path: the contacts' i and j
-  std::vector<std::size_t> segment_count_; // vector path: contacts per thread's segment
-  std::vector<double> segment_worst_;      // vector path: largest overlap ratio per segment
+    for (; k < pairs.i.size(); ++k)
+    {
+      const int i = pairs.i[k], j = pairs.j[k];
+      const Vec3 d = x[j] - x[i];
+      const double sum = s * pairs.radius_sum[k], d2 = d.squaredNorm();
+      if (d2 >= sum * sum)
+        continue;
+      const double dist = std::sqrt(d2), delta = sum - dist;
+      // why: coincident centres have no normal: separate them along x
+      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
+      add(i, j, Vec3(delta * n), delta);
+      worst = std::max(worst, delta / (s * pairs.radius_min[k]));
+    }
+    return {sum_overlap, worst, contacts};
+  }
+
+private:
+  std::vector<double> contact_;   // vector path: per-contact scratch (10 arrays)
+  std::vector<int> contact_pair_; // vector path: the contacts' i and j
 };
 } // namespace dembridge::dem

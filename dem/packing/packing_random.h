@@ -19,8 +19,8 @@
 //     jams again at s ~ 1 (within 0.2 % for ~3000 spheres; up to two passes, the closest kept).
 // The radii are the drawn ones times the final s (RandomPackingReport::radius_scale). On the
 // thesis specimen (0.25 x 0.1 x 0.1 m, r = 5 mm) this gives about 2870 spheres and porosity
-// 0.396-0.398 (thesis Table 2: 2855-2903 and 0.39-0.40). Seeded: the same seed gives bitwise
-// the same packing from the same binary, on any number of threads.
+// 0.396-0.398 (thesis Table 2: 2855-2903 and 0.39-0.40). Serial and seeded: the same seed gives
+// bitwise the same packing from the same binary.
 #include "dem/core/particle_store.h"
 #include <string>
 
@@ -51,11 +51,6 @@ struct RandomPackingSettings
   /// The overlap forces eight pairs at a time where the CPU has AVX-512 (false: one pair at a
   /// time). Either gives bitwise the same packing; the switch is there to test that.
   bool vector_path = true;
-  /// Threads for the overlap terms (vector path), the pair-list rebuilds and the FIRE update;
-  /// every sum keeps its one-thread order, so any count gives bitwise the same packing.
-  int threads = 1;
-  /// Fewer spheres than this pack on one thread (forking costs more than the loops save).
-  std::size_t parallel_min_spheres = 4000;
 };
 
 struct RandomPackingReport

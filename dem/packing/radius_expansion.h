@@ -21,8 +21,7 @@ class Packer
 public:
   Packer(const RandomPackingSettings& set, std::vector<double> radii, Rng& rng)
       : L_(set.box_size), R_(std::move(radii)), s_(set.initial_radius_fraction),
-        rmean_(set.mean_radius), skin_(0.3 * set.mean_radius), vector_path_(set.vector_path),
-        threads_(R_.size() >= set.parallel_min_spheres ? std::max(1, set.threads) : 1)
+        rmean_(set.mean_radius), skin_(0.3 * set.mean_radius), vector_path_(set.vector_path)
   {
     x_.resize(R_.size());
     for (std::size_t i = 0; i < R_.size(); ++i)
@@ -61,10 +60,8 @@ public:
   void set_scale(double s)
   {
     s_ = s;
-    const long n = long(x_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (long i = 0; i < n; ++i)
-      clamp(std::size_t(i));
+    for (std::size_t i = 0; i < x_.size(); ++i)
+      clamp(i);
   }
 
   /// Overlap forces f_i = sum_j delta_ij n_ji (unit stiffness, overlap_forces.h); returns the
@@ -72,7 +69,7 @@ public:
   std::pair<double, double> forces()
   {
     update_list();
-    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_, threads_);
+    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_);
     return {sums.contacts ? sums.sum_overlap / double(sums.contacts) / (s_ * rmean_) : 0.0,
             sums.worst};
   }
@@ -114,8 +111,6 @@ public:
       std::fill(v_.begin(), v_.end(), Vec3::Zero());
     }
     const double dt = dt_, s = s_;
-    // why: each sphere's update is its own (the sums above stay on one thread, in order)
-#pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::size_t i = 0; i < n; ++i)
     {
       if (P > 0)
@@ -173,15 +168,12 @@ private:
   std::vector<double> R_;
   double s_, rmean_, skin_, rmax_ = 0;
   bool vector_path_ = true;
-  int threads_ = 1;
-  std::vector<OverlapPairs> thread_pairs_; // the list rebuild's parts, threads 1.. (kept)
-  std::vector<std::size_t> pair_count_;    // pairs in each thread's part
-  std::vector<Vec3> x_, xb_;               // centres, centres at the last list build
-  double sb_ = 0;                          // s at the last list build
-  OverlapPairs pairs_;                     // Verlet pair list, in the cell list's order
-  OverlapForces overlap_;                  // the force kernel and its scratch
-  std::vector<double> sorted_radius_;      // radii in the cell list's slot order
-  std::vector<Vec3> v_, f_;                // FIRE velocities and forces
+  std::vector<Vec3> x_, xb_;          // centres, centres at the last list build
+  double sb_ = 0;                     // s at the last list build
+  OverlapPairs pairs_;                // Verlet pair list, in the cell list's order
+  OverlapForces overlap_;             // the force kernel and its scratch
+  std::vector<double> sorted_radius_; // radii in the cell list's slot order
+  std::vector<Vec3> v_, f_;           // FIRE velocities and forces
   // FIRE parameters (Bitzek et al. 2006) in dimensionless time (unit stiffness and mass): the
   // stiffest mode of ~12 unit springs per sphere needs dt < 2/sqrt(24) ~ 0.4.
   static constexpr double dt0_ = 0.1, dt_max_ = 0.3, dt_min_ = 0.005, alpha0_ = 0.1;
@@ -193,24 +185,15 @@ private:
   {
     if (xb_.size() == x_.size())
     {
-      // why: four running maxima (max is exact in any order) let the loop pipeline; one
-      // chunk of spheres per thread
-      const std::size_t n = x_.size();
-      double d2 = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static, 1) reduction(max : d2)
-      for (int t = 0; t < threads_; ++t)
-      {
-        const std::size_t first = n * std::size_t(t) / std::size_t(threads_);
-        const std::size_t last = n * std::size_t(t + 1) / std::size_t(threads_);
-        const std::size_t last4 = last - (last - first) % 4;
-        double m[4] = {0, 0, 0, 0};
-        for (std::size_t i = first; i < last4; i += 4)
-          for (int k = 0; k < 4; ++k)
-            m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
-        for (std::size_t i = last4; i < last; ++i)
-          m[0] = std::max(m[0], (x_[i] - xb_[i]).squaredNorm());
-        d2 = std::max(d2, std::max(std::max(m[0], m[1]), std::max(m[2], m[3])));
-      }
+      // why: four running maxima (max is exact in any order) let the loop pipeline
+      double m[4] = {0, 0, 0, 0};
+      const std::size_t n = x_.size(), n4 = n - n % 4;
+      for (std::size_t i = 0; i < n4; i += 4)
+        for (int k = 0; k < 4; ++k)
+          m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
+      for (std::size_t i = n4; i < n; ++i)
+        m[0] = std::max(m[0], (x_[i] - xb_[i]).squaredNorm());
+      const double d2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
       // why: two spheres approach by at most twice the largest displacement plus their growth
       if (2 * std::sqrt(d2) + 2 * std::max(0.0, s_ - sb_) * rmax_ < skin_)
         return;
@@ -225,67 +208,31 @@ private:
     sorted_radius_.resize(R_.size());
     for (std::size_t k = 0; k < R_.size(); ++k)
       sorted_radius_[k] = R_[slot_particle[k]];
-    // One range of consecutive cells per thread, each into its own list, concatenated in
-    // order: the one-thread list.
-    const std::size_t n = R_.size();
-    if (thread_pairs_.size() < std::size_t(threads_))
-      thread_pairs_.resize(std::size_t(threads_));
-    pair_count_.assign(std::size_t(threads_), 0);
-#pragma omp parallel for num_threads(threads_) schedule(static, 1)
-    for (int t = 0; t < threads_; ++t)
-    {
-      OverlapPairs& out = t == 0 ? pairs_ : thread_pairs_[std::size_t(t)];
-      const long first =
-          t == 0 ? 0 : cells.first_cell_from_slot(n * std::size_t(t) / std::size_t(threads_));
-      const long end =
-          t + 1 == threads_
-              ? cells.n_cells()
-              : cells.first_cell_from_slot(n * std::size_t(t + 1) / std::size_t(threads_));
-      std::size_t np = 0;
-      cells.for_each_neighbour_cell(
-          [&](int i, const Vec3& xi, int begin, int end_slot)
+    std::size_t np = 0;
+    cells.for_each_neighbour_cell(
+        [&](int i, const Vec3& xi, int begin, int end)
+        {
+          if (pairs_.i.size() < np + std::size_t(end - begin))
+            pairs_.resize(2 * (np + std::size_t(end - begin)) + 64);
+          const double Ri = R_[i];
+          for (int k2 = begin; k2 < end; ++k2)
           {
-            if (out.i.size() < np + std::size_t(end_slot - begin))
-              out.resize(2 * (np + std::size_t(end_slot - begin)) + 64);
-            const double Ri = R_[i];
-            for (int k2 = begin; k2 < end_slot; ++k2)
-            {
-              const int j = slot_particle[k2];
-              const double Rj = sorted_radius_[k2], d2 = (slot_centre[k2] - xi).squaredNorm();
-              const double radius_sum = Ri + Rj, lim = s * radius_sum + skin;
-              out.i[np] = i;
-              out.j[np] = j;
-              out.radius_sum[np] = radius_sum;
-              out.radius_min[np] = std::min(Ri, Rj);
-              np += (j > i) & (d2 < h2) & (d2 < lim * lim);
-            }
-          },
-          first, end);
-      pair_count_[std::size_t(t)] = np;
-    }
-    std::size_t np = pair_count_[0];
-    std::size_t total = np;
-    for (int t = 1; t < threads_; ++t)
-      total += pair_count_[std::size_t(t)];
-    pairs_.resize(total);
-    for (int t = 1; t < threads_; ++t)
-    {
-      const OverlapPairs& part = thread_pairs_[std::size_t(t)];
-      const std::size_t m = pair_count_[std::size_t(t)];
-      std::copy_n(part.i.begin(), m, pairs_.i.begin() + long(np));
-      std::copy_n(part.j.begin(), m, pairs_.j.begin() + long(np));
-      std::copy_n(part.radius_sum.begin(), m, pairs_.radius_sum.begin() + long(np));
-      std::copy_n(part.radius_min.begin(), m, pairs_.radius_min.begin() + long(np));
-      np += m;
-    }
+            const int j = slot_particle[k2];
+            const double Rj = sorted_radius_[k2], d2 = (slot_centre[k2] - xi).squaredNorm();
+            const double radius_sum = Ri + Rj, lim = s * radius_sum + skin;
+            pairs_.i[np] = i;
+            pairs_.j[np] = j;
+            pairs_.radius_sum[np] = radius_sum;
+            pairs_.radius_min[np] = std::min(Ri, Rj);
+            np += (j > i) & (d2 < h2) & (d2 < lim * lim);
+          }
+        });
+    pairs_.resize(np);
     xb_ = x_;
     sb_ = s_;
   }
 
-  void clamp(std::size_t i)
-  {
-    clamp(x_[i], v_[i], s_ * R_[i]);
-  }
+  void clamp(std::size_t i) { clamp(x_[i], v_[i], s_ * R_[i]); }
 
   /// Puts a sphere of radius a back inside the walls; the wall takes its outward velocity.
   void clamp(Vec3& x, Vec3& v, double a) const

@@ -152,38 +152,6 @@ TEST(RandomPacking, VectorPathGivesTheScalarPacking)
   }
 }
 
-// Threads change who computes the overlap terms, the pair list and the FIRE update, never the
-// order of a sum: two threads give the one-thread packing bit for bit, on both force paths.
-// parallel_min_spheres = 0 so that these small packings (~360 and ~830 spheres) use the
-// threads at all. (More threads than this machine's two cores would only make the test slow.)
-TEST(RandomPacking, ThreadsGiveTheOneThreadPacking)
-{
-  for (const auto& s : {settings(0.01, Dist::uniform, 0.2, 7), settings(0.0075, Dist::mono, 0, 2)})
-    for (const bool vector_path : {true, false})
-    {
-      auto one = s;
-      one.vector_path = vector_path;
-      ParticleStore a;
-      const RandomPackingReport ra = generate_random_packing(one, 917, a);
-      for (const int threads : {2})
-      {
-        auto many = one;
-        many.threads = threads;
-        many.parallel_min_spheres = 0;
-        ParticleStore b;
-        const RandomPackingReport rb = generate_random_packing(many, 917, b);
-        ASSERT_EQ(a.size(), b.size()) << threads << " threads";
-        EXPECT_EQ(ra.iterations, rb.iterations);
-        for (std::size_t i = 0; i < a.size(); ++i)
-        {
-          ASSERT_EQ(a.position[i], b.position[i]) << "sphere " << i << ", " << threads
-                                                  << " threads"; // exact equality
-          ASSERT_EQ(a.radius[i], b.radius[i]);
-        }
-      }
-    }
-}
-
 // Polydisperse: radii within the stated bounds (times the final radius scale, which stays
 // within 1 %), sample mean within 2 % of the target (N ~ 3000, so the sampling error of the
 // mean is ~0.2 %), porosity at most 0.40 as for equal spheres (polydispersity packs denser).
