@@ -73,6 +73,12 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("seed", "1", Integer(0), "Random packing seed (same seed, same packing).");
   prm.declare_entry("target porosity", "0.37", Double(0, 1),
                     "Random packing: stop growing at this porosity (or when jammed).");
+  prm.declare_entry("jamming estimate", "measured", Selection("measured|predicted"),
+                    "Random packing: how the jamming density of the box is found before the pass "
+                    "that packs to it. measured: a first pass capped at full size (about three "
+                    "passes in all); predicted: from the box's wall area (equal spheres; one "
+                    "pass, about half the time, the same porosity and coordination; a measured "
+                    "pass follows when the prediction misses by more than 0.2 % in radius).");
   prm.declare_entry("save file", "", Anything(),
                     "Write the generated particles to this CSV file (x, y, z, r), for reuse.");
   prm.declare_entry("remove box min", "0, 0, 0", vector3,
@@ -268,6 +274,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     s.radius_spread = prm.get_double("radius spread");
     s.seed = unsigned(prm.get_integer("seed"));
     s.target_porosity = prm.get_double("target porosity");
+    s.predict_jamming = prm.get("jamming estimate") == "predicted";
     s.save_file = prm.get("save file");
     s.count = prm.get_integer("count");
     s.radius = prm.get_double("radius");

@@ -64,6 +64,10 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0.0, 0.9));
   app.add_option("--json", json_file, "Also write the result to this file");
   app.add_option("--csv", csv_file, "Write the (last) packing to this particle file");
+  bool predict = false;
+  app.add_flag("--predict-jamming", predict,
+               "The jamming porosity predicted from the box, not measured by a first pass "
+               "(RandomPackingSettings::predict_jamming)");
   CLI11_PARSE(app, argc, argv);
 
   nlohmann::json out;
@@ -71,11 +75,13 @@ int main(int argc, char** argv)
   out["seed"] = seed;
   out["distribution"] = spread > 0 ? "uniform" : "mono";
   out["radius_spread"] = spread;
+  out["jamming_estimate"] = predict ? "predicted" : "measured";
   for (double r : radii)
   {
     RandomPackingSettings s;
     s.mean_radius = r;
     s.seed = seed;
+    s.predict_jamming = predict;
     if (spread > 0)
     {
       s.distribution = RandomPackingSettings::Distribution::uniform;

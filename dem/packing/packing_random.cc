@@ -137,6 +137,13 @@ std::vector<double> draw_radii(const RandomPackingSettings& s, Rng& rng)
 
 } // namespace
 
+double predicted_jamming_porosity(const RandomPackingSettings& s)
+{
+  const Vec3& L = s.box_size;
+  const double wall_area_per_volume = 2 * (L[0] * L[1] + L[1] * L[2] + L[0] * L[2]) / L.prod();
+  return 0.3605 + 0.156 * s.mean_radius * wall_area_per_volume;
+}
+
 RandomPackingReport generate_random_packing(const RandomPackingSettings& set, double density,
                                             ParticleStore& out)
 {
@@ -217,10 +224,25 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
       grow_and_relax(1.05 * pk.scale());
   };
   const Packer initial = pk;
-  grow_and_relax(1.0);
-  if (pk.scale() < 1 - 1e-3)
-    compact();
   Packer best = pk;
+  const double predicted = predicted_jamming_porosity(set);
+  if (set.predict_jamming && predicted > set.target_porosity)
+  {
+    // The first pass already at about the jamming density: as many spheres removed as the
+    // predicted jamming porosity asks for, then grown uncapped (the passes below, with a
+    // predicted instead of a measured removal).
+    rep.removed = pk.remove_random((1 - predicted) / (1 - set.target_porosity), rng);
+    grow_and_relax(1.1);
+    compact();
+    best = pk;
+  }
+  else
+  {
+    grow_and_relax(1.0);
+    if (pk.scale() < 1 - 1e-3)
+      compact();
+    best = pk;
+  }
   for (int pass = 0; pass < 2 && std::abs(best.scale() - 1) > 2e-3; ++pass)
   {
     // Jammed short of full size: the target porosity is below what this box admits. Start

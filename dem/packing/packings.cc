@@ -282,6 +282,7 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     r.radius_spread = s.radius_spread;
     r.seed = s.seed;
     r.target_porosity = s.target_porosity;
+    r.predict_jamming = s.predict_jamming;
     generate_random_packing(r, s.density, p);
     for (auto& x : p.position)
       x += s.origin;
