@@ -77,7 +77,7 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "Random packing: how the jamming density of the box is found before the pass "
                     "that packs to it. measured: a first pass capped at full size (about three "
                     "passes in all); predicted: from the box's wall area (equal spheres; one "
-                    "pass, about half the time, the same porosity and coordination; a measured "
+                    "pass, a third of the time, the same porosity and coordination; a measured "
                     "pass follows when the prediction misses by more than 0.2 % in radius).");
   prm.declare_entry("save file", "", Anything(),
                     "Write the generated particles to this CSV file (x, y, z, r), for reuse.");

@@ -224,7 +224,6 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
       grow_and_relax(1.05 * pk.scale());
   };
   const Packer initial = pk;
-  Packer best = pk;
   const double predicted = predicted_jamming_porosity(set);
   if (set.predict_jamming && predicted > set.target_porosity)
   {
@@ -234,15 +233,14 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
     rep.removed = pk.remove_random((1 - predicted) / (1 - set.target_porosity), rng);
     grow_and_relax(1.1);
     compact();
-    best = pk;
   }
   else
   {
     grow_and_relax(1.0);
     if (pk.scale() < 1 - 1e-3)
       compact();
-    best = pk;
   }
+  Packer best = pk;
   for (int pass = 0; pass < 2 && std::abs(best.scale() - 1) > 2e-3; ++pass)
   {
     // Jammed short of full size: the target porosity is below what this box admits. Start
