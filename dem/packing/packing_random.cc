@@ -223,6 +223,16 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
     for (int c = 0; c < set.compaction_cycles; ++c)
       grow_and_relax(1.05 * pk.scale());
   };
+  // Step 4's pass: from the initial placement (pk), the spheres a volume fraction `keep` of
+  // them asks for removed (none if keep >= 1), grown not capped at s = 1; returns the count
+  // removed.
+  auto uncapped_pass = [&](double keep)
+  {
+    const std::size_t removed = keep < 1 ? pk.remove_random(keep, rng) : 0;
+    grow_and_relax(1.1);
+    compact();
+    return removed;
+  };
   const Packer initial = pk;
   const double predicted = predicted_jamming_porosity(set);
   // why: a target looser than the prediction by less than its uncertainty may still jam, and
@@ -231,13 +241,8 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
   const double prediction_margin = 0.003;
   if (set.predict_jamming && set.target_porosity < predicted + prediction_margin)
   {
-    // The first pass already at about the jamming density: as many spheres removed as the
-    // predicted jamming porosity asks for, then grown uncapped (the passes below, with a
-    // predicted instead of a measured removal).
-    const double keep = (1 - predicted) / (1 - set.target_porosity);
-    rep.removed = keep < 1 ? pk.remove_random(keep, rng) : 0;
-    grow_and_relax(1.1);
-    compact();
+    // The first pass is already step 4's, its removal from the predicted jamming porosity.
+    rep.removed = uncapped_pass((1 - predicted) / (1 - set.target_porosity));
   }
   else
   {
@@ -255,9 +260,7 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
     // scattered densities, so the pass closest to s = 1 is kept.
     const double keep = pk.volume() / initial.volume() * std::pow(pk.scale(), 3);
     pk = initial;
-    const std::size_t removed = keep < 1 ? pk.remove_random(keep, rng) : 0;
-    grow_and_relax(1.1);
-    compact();
+    const std::size_t removed = uncapped_pass(keep);
     if (std::abs(pk.scale() - 1) < std::abs(best.scale() - 1))
     {
       best = pk;

@@ -18,8 +18,9 @@
 //     volume fraction asks for, and repeat 2-3 without the cap at s = 1, so that the packing
 //     jams again at s ~ 1 (within 0.2 % for ~3000 spheres; up to two passes, the closest kept).
 //     With predict_jamming the first pass is already such a pass, its removal from the
-//     predicted jamming porosity (predicted_jamming_porosity), and the measured passes follow
-//     only if it jams more than 0.2 % away from s = 1.
+//     predicted jamming porosity (predicted_jamming_porosity; none for a target up to 0.003
+//     looser than it, which may still jam), and the measured passes follow only if it jams
+//     more than 0.2 % away from s = 1.
 // The radii are the drawn ones times the final s (RandomPackingReport::radius_scale). On the
 // thesis specimen (0.25 x 0.1 x 0.1 m, r = 5 mm) this gives about 2870 spheres and porosity
 // 0.396-0.398 (thesis Table 2: 2855-2903 and 0.39-0.40). Serial and seeded: the same seed gives
