@@ -10,9 +10,11 @@ multipliers).
 Full-DEM explicit settings: the load ramp of the coupled run (0.05 s), local (particle)
 damping 0.7 (PFC's default) and the stop at an unbalanced-force ratio of 1e-5.
 
-Two coupled runs: the example as it is (Q1 cells with incompatible modes, growing from one
-spacing at the band to 0.1 m) and, for the record, uniform plain Q1 cells one spacing long
-(17,550 DoFs, the continuum before issue 9's speed work). The coupling's cost is reported against
+Three coupled runs: the example as it is (Q1 cells with incompatible modes, growing from one
+spacing at the band to 0.1 m, two cells across the depth and the width) and, for the record,
+the same with four cells across (the example before 3 December, third session: 3,450 DoFs) and
+uniform plain Q1 cells one spacing long, four across (17,550 DoFs, the continuum before issue
+9's speed work). The coupling's cost is reported against
 the particle region's own (issue 9: below a quarter).
 
 Writes bench/results/coupled_speed_r5mm.json. Usage: /usr/bin/python3 bench/coupled_speed.py
@@ -55,7 +57,6 @@ def main():
     work = os.path.join(a.build, "bench-output", "coupled_speed")
     common = ["Particles/radius=%g" % r, "Output/write vtu=false"]
     coupled_sets = common + ["Coupling/band width=%g" % (3 * d),
-                             "Coupling/element size=%g, 0.025, 0.025" % d,
                              "Coupling/band element size=%g" % d]
     dem_sets = common + ["Particles/origin=%g, 0, 0" % (-r),
                          "Particles/box size=%g, 0.1, 0.1" % (2.5 + d)]
@@ -69,9 +70,12 @@ def main():
                                           "n_particles": s["n_particles"],
                                           "peak_memory_bytes": s.get("peak_memory_bytes")}
     print("full DEM static: %.1f s, deflection %.6e m" % (wall, reference), flush=True)
-    variants = [("coupled", []),
-                ("coupled_uniform_q1", ["FEM/incompatible modes=false",
-                                        "Coupling/far element size=0, 0, 0"])]
+    four_across = ["Coupling/element size=%g, 0.025, 0.025" % d]
+    variants = [("coupled", ["Coupling/element size=%g, 0.05, 0.05" % d]),
+                ("coupled_four_cells_across",
+                 four_across + ["Coupling/far element size=0.1, 0.025, 0.025"]),
+                ("coupled_uniform_q1", four_across + ["FEM/incompatible modes=false",
+                                                      "Coupling/far element size=0, 0, 0"])]
     for name, extra in variants:
         wall, s = run(exe, case, os.path.join(work, name), coupled_sets + extra)
         particles = s["solver_seconds"] - s["coupling_seconds"]
