@@ -73,12 +73,13 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("seed", "1", Integer(0), "Random packing seed (same seed, same packing).");
   prm.declare_entry("target porosity", "0.37", Double(0, 1),
                     "Random packing: stop growing at this porosity (or when jammed).");
-  prm.declare_entry("jamming estimate", "measured", Selection("measured|predicted"),
+  prm.declare_entry("jamming estimate", "predicted", Selection("measured|predicted"),
                     "Random packing: how the jamming density of the box is found before the pass "
-                    "that packs to it. measured: a first pass capped at full size (about three "
-                    "passes in all); predicted: from the box's wall area (equal spheres; one "
-                    "pass, a third of the time, the same porosity and coordination; a measured "
-                    "pass follows when the prediction misses by more than 0.2 % in radius).");
+                    "that packs to it. predicted: from the box's wall area (one pass; a measured "
+                    "pass follows when the prediction misses by more than 0.2 % in radius); "
+                    "measured: a first pass capped at full size (about three passes in all, "
+                    "three times the time, the same porosity and coordination; the default "
+                    "until 3 December 2026).");
   prm.declare_entry("save file", "", Anything(),
                     "Write the generated particles to this CSV file (x, y, z, r), for reuse.");
   prm.declare_entry("remove box min", "0, 0, 0", vector3,

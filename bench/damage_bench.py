@@ -112,7 +112,9 @@ def main():
     if not packing.exists():  # the random packing once (one step of the example)
         print(f"packing r = {args.radius} m ...", flush=True)
         dembridge(exe, case, work / "pack",
+                  # the recorded figures rest on the measured estimate's packing
                   [f"Particles/radius={args.radius}", f"Particles/save file={packing}",
+                   "Particles/jamming estimate=measured",
                    "Simulation/max steps=1", "Output/write vtu=false"], work / "pack.log")
     from_file = ["Particles/source=file", f"Particles/file={packing}", "Output/write vtu=false",
                  f"Simulation/threads={args.threads}"]

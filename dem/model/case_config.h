@@ -40,7 +40,7 @@ struct ParticleSource
   unsigned seed = 1;
   double target_porosity = 0.37;
   /// the jamming density predicted, not measured (RandomPackingSettings::predict_jamming)
-  bool predict_jamming = false;
+  bool predict_jamming = true;
   std::string save_file; ///< if set, the generated particles are written here (CSV)
   /// A notch: particles whose centres lie inside [remove_box_min, remove_box_max] are removed
   /// before bonding (no removal while the box has no volume).
