@@ -79,8 +79,8 @@ TEST(SizeEstimate, BondCountsBoundTheLattice)
 
 // A random packing: the packer draws (1 - target porosity) of the box (default target 0.37) and
 // removes spheres if it jams short of full size. The thesis specimen (r = 5 mm) ends at porosity
-// 0.396-0.398 (docs/specimens.md), so the drawn count bounds the final one within
-// 0.63 / 0.602 = 1.047, i.e. 5 %. (Smaller specimens end more porous near the walls: at r = 7.5 mm
+// 0.397-0.399 (docs/specimens.md), so the drawn count bounds the final one within
+// 0.63 / 0.601 = 1.048, i.e. 5 %. (Smaller specimens end more porous near the walls: at r = 7.5 mm
 // 0.415 and 1.076.)
 TEST(SizeEstimate, RandomPackingCountIsAnUpperBound)
 {
