@@ -155,8 +155,8 @@ TEST(RandomPacking, VectorPathGivesTheScalarPacking)
 // The predicted jamming estimate (packing_random.h, step 4) packs in one pass, at s within
 // 0.2 % of 1, with the statistics of the measured estimate's three passes: over three seeds of
 // the thesis specimen (r = 5 mm, ~2,870 spheres, whose single packings scatter by ~0.001 in
-// porosity) the mean porosity within 0.002 and the mean coordination within 0.1 of the default
-// protocol's, each in at most 0.6 of its relaxation iterations (one pass of three: ~0.5).
+// porosity) the mean porosity within 0.002 and the mean coordination within 0.1 of the measured
+// estimate's, each in at most 0.6 of its relaxation iterations (one pass of three: ~0.5).
 TEST(RandomPacking, PredictedJammingPacksTheSameInOnePass)
 {
   double porosity[2] = {0, 0}, coordination[2] = {0, 0};
@@ -181,7 +181,7 @@ TEST(RandomPacking, PredictedJammingPacksTheSameInOnePass)
   }
   EXPECT_NEAR(porosity[1], porosity[0], 0.002);
   EXPECT_NEAR(coordination[1], coordination[0], 0.1);
-  // the prediction itself against the default protocol's packings (bench/RESULTS_STATIC.md)
+  // the prediction itself against the measured estimate's packings (bench/RESULTS_STATIC.md)
   EXPECT_NEAR(predicted_jamming_porosity(settings(0.0025)), 0.3788, 0.001);
 }
 
