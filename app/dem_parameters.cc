@@ -137,7 +137,9 @@ void declare_dem_parameters(ParameterHandler& prm)
       "particles / mean bond force, PFC's convention) is below this; 0: off. Unlike the "
       "quasi-static speed it cannot fire at the turning point of an oscillation.");
   prm.declare_entry("max steps", "100000000", Integer(1), "Step limit.");
-  prm.declare_entry("threads", "1", Integer(1, 256), "Threads for the force and update loops.");
+  prm.declare_entry("threads", "1", Integer(1, 256),
+                    "Threads for the force and update loops and the random packing (which is "
+                    "bitwise the same on any count).");
   prm.declare_entry("static linear solver", "auto", Selection("auto|cg|gamg"),
                     "Static solver's iterative solve: cg = Jacobi-preconditioned conjugate "
                     "gradients (Eigen), gamg = CG with PETSc's algebraic multigrid (iterations "

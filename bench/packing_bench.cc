@@ -3,7 +3,9 @@
 // sphere count is set by the radius (r = 5 mm: ~2,900 spheres, 2.5 mm: ~23,000, 0.7 mm: ~1 M).
 // For each radius: wall and CPU time, relaxation iterations, porosity, coordination (contact
 // multiplier 1.02) and a fingerprint of the packing (FNV-1a over the bits of every centre and
-// radius), so that two builds can be checked to give bitwise the same packing.
+// radius), so that two builds can be checked to give bitwise the same packing. With
+// --threads 1,2 each radius is packed once per thread count in the same run (wall time is what
+// threads save; the fingerprints must agree).
 // Prints one JSON object (and writes it with --json).
 #include "dem/packing/packing_random.h"
 #include <CLI/CLI.hpp>
@@ -64,6 +66,9 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0.0, 0.9));
   app.add_option("--json", json_file, "Also write the result to this file");
   app.add_option("--csv", csv_file, "Write the (last) packing to this particle file");
+  std::vector<int> thread_counts = {1};
+  app.add_option("--threads", thread_counts, "Thread counts, one packing each per radius")
+      ->check(CLI::Range(1, 256));
   bool predict = false;
   app.add_flag("--predict-jamming", predict,
                "The jamming porosity predicted from the box, not measured by a first pass "
@@ -77,39 +82,44 @@ int main(int argc, char** argv)
   out["radius_spread"] = spread;
   out["jamming_estimate"] = predict ? "predicted" : "measured";
   for (double r : radii)
-  {
-    RandomPackingSettings s;
-    s.mean_radius = r;
-    s.seed = seed;
-    s.predict_jamming = predict;
-    if (spread > 0)
+    for (int threads : thread_counts)
     {
-      s.distribution = RandomPackingSettings::Distribution::uniform;
-      s.radius_spread = spread;
+      RandomPackingSettings s;
+      s.mean_radius = r;
+      s.seed = seed;
+      s.predict_jamming = predict;
+      s.threads = threads;
+      if (spread > 0)
+      {
+        s.distribution = RandomPackingSettings::Distribution::uniform;
+        s.radius_spread = spread;
+      }
+      ParticleStore p;
+      const double c0 = process_cpu_seconds();
+      const RandomPackingReport rep = generate_random_packing(s, 917, p);
+      const double cpu = process_cpu_seconds() - c0;
+      nlohmann::json j;
+      j["radius_m"] = r;
+      j["threads"] = threads;
+      j["particles"] = rep.particles;
+      j["removed"] = rep.removed;
+      j["wall_seconds"] = rep.seconds;
+      j["cpu_seconds"] = cpu;
+      j["iterations"] = rep.iterations;
+      j["microseconds_per_particle_iteration"] =
+          1e6 * cpu / (double(rep.particles) * double(rep.iterations));
+      j["wall_microseconds_per_particle_iteration"] =
+          1e6 * rep.seconds / (double(rep.particles) * double(rep.iterations));
+      j["porosity"] = rep.porosity;
+      j["coordination_1.02"] = rep.mean_coordination_contact;
+      j["max_overlap_ratio"] = rep.max_overlap_ratio;
+      j["radius_scale"] = rep.radius_scale;
+      j["fingerprint"] = fingerprint(p);
+      std::cerr << j.dump() << "\n";
+      out["points"].push_back(j);
+      if (!csv_file.empty())
+        write_particle_file(csv_file, p);
     }
-    ParticleStore p;
-    const double c0 = process_cpu_seconds();
-    const RandomPackingReport rep = generate_random_packing(s, 917, p);
-    const double cpu = process_cpu_seconds() - c0;
-    nlohmann::json j;
-    j["radius_m"] = r;
-    j["particles"] = rep.particles;
-    j["removed"] = rep.removed;
-    j["wall_seconds"] = rep.seconds;
-    j["cpu_seconds"] = cpu;
-    j["iterations"] = rep.iterations;
-    j["microseconds_per_particle_iteration"] =
-        1e6 * cpu / (double(rep.particles) * double(rep.iterations));
-    j["porosity"] = rep.porosity;
-    j["coordination_1.02"] = rep.mean_coordination_contact;
-    j["max_overlap_ratio"] = rep.max_overlap_ratio;
-    j["radius_scale"] = rep.radius_scale;
-    j["fingerprint"] = fingerprint(p);
-    std::cerr << j.dump() << "\n";
-    out["points"].push_back(j);
-    if (!csv_file.empty())
-      write_particle_file(csv_file, p);
-  }
   std::cout << out.dump(2) << "\n";
   if (!json_file.empty())
     std::ofstream(json_file) << out.dump(2) << "\n";

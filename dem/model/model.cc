@@ -56,7 +56,7 @@ void set_porosity(const ParticleSource& src, Model& m)
 Model build_model(const CaseConfig& c)
 {
   Model m;
-  generate_particles(c.particles, m.particles);
+  generate_particles(c.particles, m.particles, c.run.threads);
   auto& p = m.particles;
   set_porosity(c.particles, m);
   if (c.particles.keep)

@@ -24,7 +24,14 @@ public:
   /// every particle i and every neighbouring cell (slots [begin, end) of particle(), centre();
   /// their indices ascend), without the distance and index filters. For loops that filter
   /// without branches.
-  template <class F> void for_each_neighbour_cell(F&& f) const;
+  template <class F> void for_each_neighbour_cell(F&& f) const
+  {
+    for_each_neighbour_cell(f, 0, n_[2]);
+  }
+  /// The same for the cells of the z-layers [z_begin, z_end) only: consecutive ranges visit in
+  /// turn what the whole visit does (threads split the layers and join their results in order).
+  template <class F> void for_each_neighbour_cell(F&& f, long z_begin, long z_end) const;
+  long layers() const { return n_[2]; } ///< cell layers along z
   const int* particle() const { return cell_particles_.data(); } ///< index in slot k
   const Vec3* centre() const { return sorted_.data(); }          ///< centre in slot k
   double cell_size() const { return h_; }
@@ -38,10 +45,11 @@ private:
   long cell_index(const Vec3& x) const;
 };
 
-template <class F> void CellList::for_each_neighbour_cell(F&& f) const
+template <class F>
+void CellList::for_each_neighbour_cell(F&& f, long z_begin, long z_end) const
 {
   std::array<long, 27> neighbours;
-  for (long cz = 0; cz < n_[2]; ++cz)
+  for (long cz = z_begin; cz < z_end; ++cz)
     for (long cy = 0; cy < n_[1]; ++cy)
       for (long cx = 0; cx < n_[0]; ++cx)
       {

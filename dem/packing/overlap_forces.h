@@ -20,6 +20,9 @@
 #if defined(__AVX512F__)
 #include <immintrin.h>
 #endif
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace dembridge::dem
 {
@@ -48,45 +51,135 @@ struct OverlapSums
 class OverlapForces
 {
 public:
-  /// f_out = the overlap forces of the pairs at radius scale s (f_out sized like x_in).
+  /// f_out = the overlap forces of the pairs at radius scale s (f_out sized like x_in). The
+  /// vector path runs on `threads` threads with the one-thread result: the pairs are split into
+  /// consecutive chunks whose contacts are packed and evaluated in parallel, and each thread then
+  /// adds, for the spheres it owns, the contacts' terms in list order.
   OverlapSums compute(const OverlapPairs& pairs, const std::vector<Vec3>& x_in, double s,
-                      std::vector<Vec3>& f_out, bool vector_path = true)
+                      std::vector<Vec3>& f_out, bool vector_path = true, int threads = 1)
   {
-    std::fill(f_out.begin(), f_out.end(), Vec3::Zero());
     (void)vector_path; // why: read by the vector path only
+#if !defined(_OPENMP)
+    threads = 1;
+#endif
     double sum_overlap = 0, worst = 0;
     long contacts = 0;
     Vec3* const f = f_out.data();
     const Vec3* const x = x_in.data();
-    // One contact's contribution, in list order.
-    auto add = [&](int i, int j, const Vec3& fd, double delta)
-    {
-      f[i] -= fd;
-      f[j] += fd;
-      sum_overlap += delta;
-      ++contacts;
-    };
     std::size_t k = 0;
 #if defined(__AVX512F__)
-    // Pass 1: the pairs in contact, eight pairs a step, packed in list order into the contact
-    // buffers (their centre distance vectors, squared distances, radius sums and smaller radii).
-    const double* X = x_in.empty() ? nullptr : x_in[0].data();
-    const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
-    const __m256i three = _mm256_set1_epi32(3);
     const std::size_t np = vector_path ? pairs.i.size() - pairs.i.size() % 8 : 0;
-    if (contact_.size() < 10 * (np + 8))
-      contact_.resize(10 * (np + 8));
-    double* const cx = contact_.data();
-    double *const cy = cx + np + 8, *const cz = cy + np + 8, *const cd2 = cz + np + 8;
-    double *const csum = cd2 + np + 8, *const cmin = csum + np + 8;
-    double *const cfx = cmin + np + 8, *const cfy = cfx + np + 8, *const cfz = cfy + np + 8;
-    double* const cdelta = cfz + np + 8;
-    if (contact_pair_.size() < 2 * (np + 8))
-      contact_pair_.resize(2 * (np + 8));
-    int* const ci = contact_pair_.data();
-    int* const cj = ci + np + 8;
+    if (np > 0)
+    {
+      const int nt = int(std::clamp<std::size_t>(std::size_t(std::max(threads, 1)), 1, np / 8));
+      const std::size_t stride = np + 8 * std::size_t(nt); // each chunk's region has 8 spare
+      if (contact_.size() < 10 * stride)
+        contact_.resize(10 * stride);
+      if (contact_pair_.size() < 2 * stride)
+        contact_pair_.resize(2 * stride);
+      chunk_count_.assign(std::size_t(nt), 0);
+      chunk_worst_.assign(std::size_t(nt), 0.0);
+      const std::size_t nx = x_in.size();
+#pragma omp parallel num_threads(nt)
+      {
+#if defined(_OPENMP)
+        const int t = omp_get_thread_num();
+#else
+        const int t = 0;
+#endif
+        const std::size_t b = np / 8 * std::size_t(t) / std::size_t(nt) * 8;
+        const std::size_t e = np / 8 * std::size_t(t + 1) / std::size_t(nt) * 8;
+        const std::size_t base = b + 8 * std::size_t(t);
+        std::fill(f + nx * std::size_t(t) / std::size_t(nt),
+                  f + nx * std::size_t(t + 1) / std::size_t(nt), Vec3::Zero());
+        chunk_count_[std::size_t(t)] =
+            pack_contacts(pairs, x_in, s, b, e, contact_.data() + base, stride,
+                          contact_pair_.data() + base, stride);
+        chunk_worst_[std::size_t(t)] = contact_terms(s, chunk_count_[std::size_t(t)],
+                                                     contact_.data() + base, stride);
+#pragma omp barrier
+        // The sums: every thread walks all contacts in list order and adds the terms of the
+        // spheres it owns, so each sphere gets its terms in the one-thread order.
+        const int lo = int(nx * std::size_t(t) / std::size_t(nt));
+        const int hi = int(nx * std::size_t(t + 1) / std::size_t(nt));
+        double overlap_sum = 0;
+        for (int c = 0; c < nt; ++c)
+        {
+          const std::size_t cb = np / 8 * std::size_t(c) / std::size_t(nt) * 8 + 8 * std::size_t(c);
+          const double* const cfx = contact_.data() + 6 * stride + cb;
+          const double* const cfy = cfx + stride;
+          const double* const cfz = cfy + stride;
+          const double* const cdelta = cfz + stride;
+          const int* const ci = contact_pair_.data() + cb;
+          const int* const cj = ci + stride;
+          const std::size_t nc = chunk_count_[std::size_t(c)];
+          for (std::size_t q = 0; q < nc; ++q)
+          {
+            const Vec3 fd(cfx[q], cfy[q], cfz[q]);
+            if (ci[q] >= lo && ci[q] < hi)
+              f[ci[q]] -= fd;
+            if (cj[q] >= lo && cj[q] < hi)
+              f[cj[q]] += fd;
+            if (t == 0) // why: the overlap sum in list order, once
+              overlap_sum += cdelta[q];
+          }
+        }
+        if (t == 0)
+          sum_overlap = overlap_sum;
+      }
+      for (int t = 0; t < nt; ++t)
+      {
+        contacts += long(chunk_count_[std::size_t(t)]);
+        worst = std::max(worst, chunk_worst_[std::size_t(t)]); // max: exact in any order
+      }
+      k = np;
+    }
+    else
+      std::fill(f_out.begin(), f_out.end(), Vec3::Zero());
+#else
+    std::fill(f_out.begin(), f_out.end(), Vec3::Zero());
+#endif
+    for (; k < pairs.i.size(); ++k)
+    {
+      const int i = pairs.i[k], j = pairs.j[k];
+      const Vec3 d = x[j] - x[i];
+      const double sum = s * pairs.radius_sum[k], d2 = d.squaredNorm();
+      if (d2 >= sum * sum)
+        continue;
+      const double dist = std::sqrt(d2), delta = sum - dist;
+      // why: coincident centres have no normal: separate them along x
+      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
+      f[i] -= delta * n;
+      f[j] += delta * n;
+      sum_overlap += delta;
+      ++contacts;
+      worst = std::max(worst, delta / (s * pairs.radius_min[k]));
+    }
+    return {sum_overlap, worst, contacts};
+  }
+
+private:
+  std::vector<double> contact_;   // vector path: per-contact scratch (10 arrays of `stride`)
+  std::vector<int> contact_pair_; // vector path: the contacts' i and j (2 arrays)
+  std::vector<std::size_t> chunk_count_; // contacts of each thread's chunk
+  std::vector<double> chunk_worst_;      // largest overlap ratio of each chunk
+
+#if defined(__AVX512F__)
+  /// Pass 1: the pairs [b, e) in contact, eight pairs a step, packed in list order into the
+  /// contact arrays at c (x, y, z of the distance vector, squared distance, radius sum, smaller
+  /// radius; `stride` apart) and cij (i, j); returns their count.
+  static std::size_t pack_contacts(const OverlapPairs& pairs, const std::vector<Vec3>& x_in,
+                                   double s, std::size_t b, std::size_t e, double* c,
+                                   std::size_t stride, int* cij, std::size_t pair_stride)
+  {
+    const double* X = x_in[0].data();
+    const __m512d vs = _mm512_set1_pd(s);
+    const __m256i three = _mm256_set1_epi32(3);
+    double *const cx = c, *const cy = cx + stride, *const cz = cy + stride;
+    double *const cd2 = cz + stride, *const csum = cd2 + stride, *const cmin = csum + stride;
+    int *const ci = cij, *const cj = cij + pair_stride;
     std::size_t nc = 0;
-    for (; k < np; k += 8)
+    for (std::size_t k = b; k < e; k += 8)
     {
       const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.i[k]));
       const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.j[k]));
@@ -118,51 +211,41 @@ public:
                           _mm256_maskz_compress_epi32(touching, vj));
       nc += std::size_t(__builtin_popcount(touching));
     }
-    // Pass 2: the contacts' terms, eight contacts a step (lanes past the last contact are
-    // masked off).
-    __m512d vworst = zero;
-    for (std::size_t c = 0; c < nc; c += 8)
-    {
-      const __mmask8 live = nc - c >= 8 ? __mmask8(0xff) : __mmask8((1u << (nc - c)) - 1);
-      const __m512d d2 = _mm512_maskz_loadu_pd(live, cd2 + c);
-      const __m512d dist = _mm512_sqrt_pd(d2);
-      const __m512d delta = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, csum + c), dist);
-      const __mmask8 apart = _mm512_mask_cmp_pd_mask(live, dist, zero, _CMP_GT_OQ);
-      // n = d / dist, or (1, 0, 0) for coincident centres
-      const __m512d nx = _mm512_mask_div_pd(one, apart, _mm512_maskz_loadu_pd(live, cx + c), dist);
-      const __m512d ny = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cy + c), dist);
-      const __m512d nz = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cz + c), dist);
-      _mm512_storeu_pd(cfx + c, _mm512_mul_pd(delta, nx));
-      _mm512_storeu_pd(cfy + c, _mm512_mul_pd(delta, ny));
-      _mm512_storeu_pd(cfz + c, _mm512_mul_pd(delta, nz));
-      _mm512_storeu_pd(cdelta + c, delta);
-      const __m512d ratio = _mm512_maskz_div_pd(
-          live, delta, _mm512_mul_pd(vs, _mm512_mask_loadu_pd(one, live, cmin + c)));
-      vworst = _mm512_mask_max_pd(vworst, live, vworst, ratio); // max: exact in any order
-    }
-    worst = _mm512_reduce_max_pd(vworst);
-    // Pass 3: the sums, one contact at a time in list order.
-    for (std::size_t c = 0; c < nc; ++c)
-      add(ci[c], cj[c], Vec3(cfx[c], cfy[c], cfz[c]), cdelta[c]);
-#endif
-    for (; k < pairs.i.size(); ++k)
-    {
-      const int i = pairs.i[k], j = pairs.j[k];
-      const Vec3 d = x[j] - x[i];
-      const double sum = s * pairs.radius_sum[k], d2 = d.squaredNorm();
-      if (d2 >= sum * sum)
-        continue;
-      const double dist = std::sqrt(d2), delta = sum - dist;
-      // why: coincident centres have no normal: separate them along x
-      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
-      add(i, j, Vec3(delta * n), delta);
-      worst = std::max(worst, delta / (s * pairs.radius_min[k]));
-    }
-    return {sum_overlap, worst, contacts};
+    return nc;
   }
 
-private:
-  std::vector<double> contact_;   // vector path: per-contact scratch (10 arrays)
-  std::vector<int> contact_pair_; // vector path: the contacts' i and j
+  /// Pass 2: the nc contacts' terms at c (pack_contacts' layout), eight contacts a step (lanes
+  /// past the last contact masked off): delta n into the arrays 6-8, delta into 9; returns the
+  /// largest delta / (s min(R_i, R_j)).
+  static double contact_terms(double s, std::size_t nc, double* c, std::size_t stride)
+  {
+    const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
+    const double *const cx = c, *const cy = cx + stride, *const cz = cy + stride;
+    const double *const cd2 = cz + stride, *const csum = cd2 + stride, *const cmin = csum + stride;
+    double *const cfx = c + 6 * stride, *const cfy = cfx + stride, *const cfz = cfy + stride;
+    double* const cdelta = cfz + stride;
+    __m512d vworst = zero;
+    for (std::size_t q = 0; q < nc; q += 8)
+    {
+      const __mmask8 live = nc - q >= 8 ? __mmask8(0xff) : __mmask8((1u << (nc - q)) - 1);
+      const __m512d d2 = _mm512_maskz_loadu_pd(live, cd2 + q);
+      const __m512d dist = _mm512_sqrt_pd(d2);
+      const __m512d delta = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, csum + q), dist);
+      const __mmask8 apart = _mm512_mask_cmp_pd_mask(live, dist, zero, _CMP_GT_OQ);
+      // n = d / dist, or (1, 0, 0) for coincident centres
+      const __m512d nx = _mm512_mask_div_pd(one, apart, _mm512_maskz_loadu_pd(live, cx + q), dist);
+      const __m512d ny = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cy + q), dist);
+      const __m512d nz = _mm512_mask_div_pd(zero, apart, _mm512_maskz_loadu_pd(live, cz + q), dist);
+      _mm512_storeu_pd(cfx + q, _mm512_mul_pd(delta, nx));
+      _mm512_storeu_pd(cfy + q, _mm512_mul_pd(delta, ny));
+      _mm512_storeu_pd(cfz + q, _mm512_mul_pd(delta, nz));
+      _mm512_storeu_pd(cdelta + q, delta);
+      const __m512d ratio = _mm512_maskz_div_pd(
+          live, delta, _mm512_mul_pd(vs, _mm512_mask_loadu_pd(one, live, cmin + q)));
+      vworst = _mm512_mask_max_pd(vworst, live, vworst, ratio); // max: exact in any order
+    }
+    return _mm512_reduce_max_pd(vworst);
+  }
+#endif
 };
 } // namespace dembridge::dem

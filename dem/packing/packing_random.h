@@ -61,6 +61,9 @@ struct RandomPackingSettings
   /// the measured estimate, the default until 3 December 2026 (the speed benchmarks keep it,
   /// so that their recorded packings stay the same).
   bool predict_jamming = true;
+  /// Threads for the overlap forces, the FIRE update and the Verlet list rebuilds (OpenMP).
+  /// Every sum keeps its one-thread order, so any count gives bitwise the same packing.
+  int threads = 1;
 };
 
 struct RandomPackingReport

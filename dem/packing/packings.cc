@@ -223,7 +223,7 @@ void read_particle_file(const std::string& path, double density, ParticleStore& 
   read_particles(in, path, density, p);
 }
 
-void generate_particles(const ParticleSource& s, ParticleStore& p)
+void generate_particles(const ParticleSource& s, ParticleStore& p, int threads)
 {
   if (!(s.density > 0))
     throw InputError("Particles/density: must be positive (got " + std::to_string(s.density) +
@@ -283,6 +283,7 @@ void generate_particles(const ParticleSource& s, ParticleStore& p)
     r.seed = s.seed;
     r.target_porosity = s.target_porosity;
     r.predict_jamming = s.predict_jamming;
+    r.threads = threads;
     generate_random_packing(r, s.density, p);
     for (auto& x : p.position)
       x += s.origin;

@@ -14,8 +14,9 @@
 
 namespace dembridge::dem
 {
-/// Fills `p` from the source; throws InputError (naming Particles/...) on bad input.
-void generate_particles(const ParticleSource& src, ParticleStore& p);
+/// Fills `p` from the source; throws InputError (naming Particles/...) on bad input. A random
+/// packing runs on `threads` threads (the same packing on any count).
+void generate_particles(const ParticleSource& src, ParticleStore& p, int threads = 1);
 
 /// Keeps the particles whose centres @p keep accepts (their masses and reference positions).
 void keep_particles(ParticleStore& p, const std::function<bool(const Vec3&)>& keep);

@@ -12,6 +12,9 @@
 #include <cmath>
 #include <numbers>
 #include <vector>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace dembridge::dem::packing_detail
 {
@@ -21,7 +24,12 @@ class Packer
 public:
   Packer(const RandomPackingSettings& set, std::vector<double> radii, Rng& rng)
       : L_(set.box_size), R_(std::move(radii)), s_(set.initial_radius_fraction),
-        rmean_(set.mean_radius), skin_(0.3 * set.mean_radius), vector_path_(set.vector_path)
+        rmean_(set.mean_radius), skin_(0.3 * set.mean_radius), vector_path_(set.vector_path),
+#if defined(_OPENMP)
+        threads_(std::max(1, set.threads))
+#else
+        threads_(1)
+#endif
   {
     x_.resize(R_.size());
     for (std::size_t i = 0; i < R_.size(); ++i)
@@ -60,8 +68,10 @@ public:
   void set_scale(double s)
   {
     s_ = s;
-    for (std::size_t i = 0; i < x_.size(); ++i)
-      clamp(i);
+    const long n = long(x_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)
+    for (long i = 0; i < n; ++i)
+      clamp(std::size_t(i));
   }
 
   /// Overlap forces f_i = sum_j delta_ij n_ji (unit stiffness, overlap_forces.h); returns the
@@ -69,7 +79,8 @@ public:
   std::pair<double, double> forces()
   {
     update_list();
-    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_);
+    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_,
+                                              x_.size() > parallel_min_ ? threads_ : 1);
     return {sums.contacts ? sums.sum_overlap / double(sums.contacts) / (s_ * rmean_) : 0.0,
             sums.worst};
   }
@@ -111,7 +122,9 @@ public:
       std::fill(v_.begin(), v_.end(), Vec3::Zero());
     }
     const double dt = dt_, s = s_;
-    for (std::size_t i = 0; i < n; ++i)
+    const long nl = long(n);
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)
+    for (long i = 0; i < nl; ++i)
     {
       if (P > 0)
         v[i] = mix * v[i] + c * f[i];
@@ -168,9 +181,14 @@ private:
   std::vector<double> R_;
   double s_, rmean_, skin_, rmax_ = 0;
   bool vector_path_ = true;
+  int threads_ = 1;
+  // why: below this many spheres a sweep (~30 us) is too short to pay for waking a second thread
+  static constexpr std::size_t parallel_min_ = 2000;
   std::vector<Vec3> x_, xb_;          // centres, centres at the last list build
   double sb_ = 0;                     // s at the last list build
   OverlapPairs pairs_;                // Verlet pair list, in the cell list's order
+  std::vector<OverlapPairs> chunk_pairs_; // threads 1, 2, ...: their layers' pairs
+  std::vector<std::size_t> chunk_size_;   // pairs collected by each thread
   OverlapForces overlap_;             // the force kernel and its scratch
   std::vector<double> sorted_radius_; // radii in the cell list's slot order
   std::vector<Vec3> v_, f_;           // FIRE velocities and forces
@@ -186,50 +204,102 @@ private:
     if (xb_.size() == x_.size())
     {
       // why: four running maxima (max is exact in any order) let the loop pipeline
-      double m[4] = {0, 0, 0, 0};
       const std::size_t n = x_.size(), n4 = n - n % 4;
-      for (std::size_t i = 0; i < n4; i += 4)
-        for (int k = 0; k < 4; ++k)
-          m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
+      double d2 = 0;
+#pragma omp parallel num_threads(threads_) reduction(max : d2) if (n > parallel_min_)
+      {
+        double m[4] = {0, 0, 0, 0};
+#pragma omp for schedule(static)
+        for (long i = 0; i < long(n4); i += 4)
+          for (int k = 0; k < 4; ++k)
+            m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
+        d2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+      }
       for (std::size_t i = n4; i < n; ++i)
-        m[0] = std::max(m[0], (x_[i] - xb_[i]).squaredNorm());
-      const double d2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+        d2 = std::max(d2, (x_[i] - xb_[i]).squaredNorm());
       // why: two spheres approach by at most twice the largest displacement plus their growth
       if (2 * std::sqrt(d2) + 2 * std::max(0.0, s_ - sb_) * rmax_ < skin_)
         return;
     }
-    // The pairs within s (R_i + R_j) + skin, visited as CellList::for_each_pair visits them and
-    // appended without branches: every candidate is written, the count advances only when it
-    // qualifies (j > i, inside the cell size, inside the pair's reach).
+    // The pairs within s (R_i + R_j) + skin in CellList::for_each_pair's order: each thread
+    // collects the pairs of a range of cell layers, and the ranges are joined in order.
     const CellList cells(x_, 2 * s_ * rmax_ + skin_);
+    const int* slot_particle = cells.particle();
+    const long nr = long(R_.size());
+    sorted_radius_.resize(R_.size());
+    const int nt = int(std::min<long>(cells.layers(), R_.size() > parallel_min_ ? threads_ : 1));
+    chunk_pairs_.resize(std::size_t(nt));
+    chunk_size_.assign(std::size_t(nt), 0);
+#pragma omp parallel num_threads(nt)
+    {
+#pragma omp for schedule(static)
+      for (long k = 0; k < nr; ++k)
+        sorted_radius_[k] = R_[slot_particle[k]];
+#if defined(_OPENMP)
+      const int t = omp_get_thread_num();
+#else
+      const int t = 0;
+#endif
+      const long layers = cells.layers();
+      // why: thread 0 collects straight into the list; the others' pairs are appended after
+      OverlapPairs& out = t == 0 ? pairs_ : chunk_pairs_[std::size_t(t)];
+      chunk_size_[std::size_t(t)] =
+          collect_pairs(cells, out, layers * t / nt, layers * (t + 1) / nt);
+#pragma omp barrier
+#pragma omp single
+      {
+        std::size_t total = 0;
+        for (std::size_t size : chunk_size_)
+          total += size;
+        pairs_.resize(total);
+      }
+      if (t > 0)
+      {
+        std::size_t at = 0;
+        for (int u = 0; u < t; ++u)
+          at += chunk_size_[std::size_t(u)];
+        const std::size_t m = chunk_size_[std::size_t(t)];
+        std::copy_n(out.i.begin(), m, pairs_.i.begin() + long(at));
+        std::copy_n(out.j.begin(), m, pairs_.j.begin() + long(at));
+        std::copy_n(out.radius_sum.begin(), m, pairs_.radius_sum.begin() + long(at));
+        std::copy_n(out.radius_min.begin(), m, pairs_.radius_min.begin() + long(at));
+      }
+    }
+    xb_ = x_;
+    sb_ = s_;
+  }
+
+  /// Collects the Verlet pairs of the cell layers [z_begin, z_end) into `out` (grown as
+  /// needed; its size is left larger than the count) and returns their count. Appended without
+  /// branches: every candidate is written, the count advances only when it qualifies (j > i,
+  /// inside the cell size, inside the pair's reach).
+  std::size_t collect_pairs(const CellList& cells, OverlapPairs& out, long z_begin,
+                            long z_end) const
+  {
     const double h2 = cells.cell_size() * cells.cell_size(), s = s_, skin = skin_;
     const int* slot_particle = cells.particle();
     const Vec3* slot_centre = cells.centre();
-    sorted_radius_.resize(R_.size());
-    for (std::size_t k = 0; k < R_.size(); ++k)
-      sorted_radius_[k] = R_[slot_particle[k]];
     std::size_t np = 0;
     cells.for_each_neighbour_cell(
         [&](int i, const Vec3& xi, int begin, int end)
         {
-          if (pairs_.i.size() < np + std::size_t(end - begin))
-            pairs_.resize(2 * (np + std::size_t(end - begin)) + 64);
+          if (out.i.size() < np + std::size_t(end - begin))
+            out.resize(2 * (np + std::size_t(end - begin)) + 64);
           const double Ri = R_[i];
           for (int k2 = begin; k2 < end; ++k2)
           {
             const int j = slot_particle[k2];
             const double Rj = sorted_radius_[k2], d2 = (slot_centre[k2] - xi).squaredNorm();
             const double radius_sum = Ri + Rj, lim = s * radius_sum + skin;
-            pairs_.i[np] = i;
-            pairs_.j[np] = j;
-            pairs_.radius_sum[np] = radius_sum;
-            pairs_.radius_min[np] = std::min(Ri, Rj);
+            out.i[np] = i;
+            out.j[np] = j;
+            out.radius_sum[np] = radius_sum;
+            out.radius_min[np] = std::min(Ri, Rj);
             np += (j > i) & (d2 < h2) & (d2 < lim * lim);
           }
-        });
-    pairs_.resize(np);
-    xb_ = x_;
-    sb_ = s_;
+        },
+        z_begin, z_end);
+    return np;
   }
 
   void clamp(std::size_t i) { clamp(x_[i], v_[i], s_ * R_[i]); }
