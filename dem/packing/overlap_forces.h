@@ -16,6 +16,7 @@
 #include "dem/core/types.h"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -54,11 +55,15 @@ public:
   /// f_out = the overlap forces of the pairs at radius scale s (f_out sized like x_in). The
   /// vector path runs on `threads` threads with the one-thread result: the pairs are split into
   /// consecutive chunks whose contacts are packed and evaluated in parallel, and each thread then
-  /// adds, for the spheres it owns, the contacts' terms in list order.
+  /// adds, for the spheres it owns, the contacts' terms in list order. The vector path skips
+  /// the overlap sum unless `need_sum` and the largest ratio unless `need_worst` (then NaN).
   OverlapSums compute(const OverlapPairs& pairs, const std::vector<Vec3>& x_in, double s,
-                      std::vector<Vec3>& f_out, bool vector_path = true, int threads = 1)
+                      std::vector<Vec3>& f_out, bool vector_path = true, int threads = 1,
+                      bool need_sum = true, bool need_worst = true)
   {
     (void)vector_path; // why: read by the vector path only
+    (void)need_sum;
+    (void)need_worst;
 #if !defined(_OPENMP)
     threads = 1;
 #endif
@@ -78,6 +83,8 @@ public:
       if (contact_pair_.size() < 2 * stride)
         contact_pair_.resize(2 * stride);
       chunk_count_.assign(std::size_t(nt), 0);
+      export_count_.assign(std::size_t(nt), 0);
+      exports_.resize(std::size_t(nt));
       chunk_worst_.assign(std::size_t(nt), 0.0);
       const std::size_t nx = x_in.size();
 #pragma omp parallel num_threads(nt)
@@ -95,13 +102,34 @@ public:
         chunk_count_[std::size_t(t)] =
             pack_contacts(pairs, x_in, s, b, e, contact_.data() + base, stride,
                           contact_pair_.data() + base, stride);
-        chunk_worst_[std::size_t(t)] = contact_terms(s, chunk_count_[std::size_t(t)],
-                                                     contact_.data() + base, stride);
-#pragma omp barrier
-        // The sums: every thread walks all contacts in list order and adds the terms of the
-        // spheres it owns, so each sphere gets its terms in the one-thread order.
+        const std::size_t nc_own = chunk_count_[std::size_t(t)];
+        chunk_worst_[std::size_t(t)] =
+            contact_terms(s, nc_own, contact_.data() + base, stride, need_worst);
+        // Sphere i belongs to thread t if lo <= i < hi. The contacts of this chunk that touch a
+        // sphere of another thread are listed for it (branch-free append).
         const int lo = int(nx * std::size_t(t) / std::size_t(nt));
         const int hi = int(nx * std::size_t(t + 1) / std::size_t(nt));
+        if (nt > 1)
+        {
+          const int* const ci = contact_pair_.data() + base;
+          const int* const cj = ci + stride;
+          std::vector<int>& ex = exports_[std::size_t(t)];
+          if (ex.size() < nc_own)
+            ex.resize(nc_own);
+          std::size_t ne = 0;
+          for (std::size_t q = 0; q < nc_own; ++q)
+          {
+            ex[ne] = int(q);
+            ne += std::size_t((ci[q] < lo) | (ci[q] >= hi) | (cj[q] < lo) | (cj[q] >= hi));
+          }
+          export_count_[std::size_t(t)] = ne;
+        }
+#pragma omp barrier
+        // The sums: each thread adds, chunk after chunk in list order, the terms of the spheres
+        // it owns (from its own chunk all contacts, from the others their exported ones), so
+        // each sphere gets its terms in the one-thread order. Thread 0 also sums the overlaps
+        // in list order (in the loop over its own chunk, then over the others' deltas).
+        const bool sums_here = need_sum && t == 0;
         double overlap_sum = 0;
         for (int c = 0; c < nt; ++c)
         {
@@ -112,19 +140,34 @@ public:
           const double* const cdelta = cfz + stride;
           const int* const ci = contact_pair_.data() + cb;
           const int* const cj = ci + stride;
-          const std::size_t nc = chunk_count_[std::size_t(c)];
-          for (std::size_t q = 0; q < nc; ++q)
+          auto add = [&](std::size_t q)
           {
             const Vec3 fd(cfx[q], cfy[q], cfz[q]);
             if (ci[q] >= lo && ci[q] < hi)
               f[ci[q]] -= fd;
             if (cj[q] >= lo && cj[q] < hi)
               f[cj[q]] += fd;
-            if (t == 0) // why: the overlap sum in list order, once
+          };
+          if (c == t && sums_here)
+            for (std::size_t q = 0; q < nc_own; ++q)
+            {
+              add(q);
               overlap_sum += cdelta[q];
+            }
+          else if (c == t)
+            for (std::size_t q = 0; q < nc_own; ++q)
+              add(q);
+          else
+          {
+            const int* const ex = exports_[std::size_t(c)].data();
+            for (std::size_t e = 0; e < export_count_[std::size_t(c)]; ++e)
+              add(std::size_t(ex[e]));
+            if (sums_here)
+              for (std::size_t q = 0; q < chunk_count_[std::size_t(c)]; ++q)
+                overlap_sum += cdelta[q];
           }
         }
-        if (t == 0)
+        if (sums_here)
           sum_overlap = overlap_sum;
       }
       for (int t = 0; t < nt; ++t)
@@ -133,6 +176,10 @@ public:
         worst = std::max(worst, chunk_worst_[std::size_t(t)]); // max: exact in any order
       }
       k = np;
+      if (!need_sum)
+        sum_overlap = std::numeric_limits<double>::quiet_NaN();
+      if (!need_worst)
+        worst = std::numeric_limits<double>::quiet_NaN();
     }
     else
       std::fill(f_out.begin(), f_out.end(), Vec3::Zero());
@@ -163,6 +210,8 @@ private:
   std::vector<int> contact_pair_; // vector path: the contacts' i and j (2 arrays)
   std::vector<std::size_t> chunk_count_; // contacts of each thread's chunk
   std::vector<double> chunk_worst_;      // largest overlap ratio of each chunk
+  std::vector<std::vector<int>> exports_; // each chunk's contacts touching other threads' spheres
+  std::vector<std::size_t> export_count_;
 
 #if defined(__AVX512F__)
   /// Pass 1: the pairs [b, e) in contact, eight pairs a step, packed in list order into the
@@ -216,8 +265,9 @@ private:
 
   /// Pass 2: the nc contacts' terms at c (pack_contacts' layout), eight contacts a step (lanes
   /// past the last contact masked off): delta n into the arrays 6-8, delta into 9; returns the
-  /// largest delta / (s min(R_i, R_j)).
-  static double contact_terms(double s, std::size_t nc, double* c, std::size_t stride)
+  /// largest delta / (s min(R_i, R_j)) if need_worst (else 0).
+  static double contact_terms(double s, std::size_t nc, double* c, std::size_t stride,
+                              bool need_worst)
   {
     const __m512d vs = _mm512_set1_pd(s), zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
     const double *const cx = c, *const cy = cx + stride, *const cz = cy + stride;
@@ -240,6 +290,8 @@ private:
       _mm512_storeu_pd(cfy + q, _mm512_mul_pd(delta, ny));
       _mm512_storeu_pd(cfz + q, _mm512_mul_pd(delta, nz));
       _mm512_storeu_pd(cdelta + q, delta);
+      if (!need_worst)
+        continue;
       const __m512d ratio = _mm512_maskz_div_pd(
           live, delta, _mm512_mul_pd(vs, _mm512_mask_loadu_pd(one, live, cmin + q)));
       vworst = _mm512_mask_max_pd(vworst, live, vworst, ratio); // max: exact in any order

@@ -69,18 +69,20 @@ public:
   {
     s_ = s;
     const long n = long(x_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)
+#pragma omp parallel for num_threads(threads_) schedule(static) if (x_.size() > parallel_min_)
     for (long i = 0; i < n; ++i)
       clamp(std::size_t(i));
   }
 
   /// Overlap forces f_i = sum_j delta_ij n_ji (unit stiffness, overlap_forces.h); returns the
-  /// mean overlap per contact / mean radius and the largest overlap / smaller current radius.
-  std::pair<double, double> forces()
+  /// mean overlap per contact / mean radius and the largest overlap / smaller current radius,
+  /// either of which may be NaN when not asked for (saving a serial sum or a division a contact).
+  std::pair<double, double> forces(bool need_mean = true, bool need_worst = true)
   {
     update_list();
-    const OverlapSums sums = overlap_.compute(pairs_, x_, s_, f_, vector_path_,
-                                              x_.size() > parallel_min_ ? threads_ : 1);
+    const OverlapSums sums =
+        overlap_.compute(pairs_, x_, s_, f_, vector_path_,
+                         x_.size() > parallel_min_ ? threads_ : 1, need_mean, need_worst);
     return {sums.contacts ? sums.sum_overlap / double(sums.contacts) / (s_ * rmean_) : 0.0,
             sums.worst};
   }
