@@ -183,10 +183,9 @@ RandomPackingReport generate_random_packing(const RandomPackingSettings& set, do
     for (long k = 1; pk.scale() < cap; ++k)
     {
       const double mean = step(true, false).first;
-      pk.fire_step();
       // why: growth slows linearly to zero as the mean overlap per contact approaches
       // growth_overlap, so the relaxation keeps pace and the packing jams gently
-      pk.set_scale(std::min(
+      pk.fire_step(std::min(
           cap, pk.scale() * (1 + set.growth_rate * std::max(0.0, 1 - mean / set.growth_overlap))));
       if (k % window == 0)
       {

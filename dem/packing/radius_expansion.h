@@ -68,6 +68,7 @@ public:
   void set_scale(double s)
   {
     s_ = s;
+    displacement2_ = -1; // why: the clamps move spheres
     const long n = long(x_.size());
 #pragma omp parallel for num_threads(threads_) schedule(static) if (x_.size() > parallel_min_)
     for (long i = 0; i < n; ++i)
@@ -89,8 +90,8 @@ public:
 
   /// One FIRE step (Bitzek et al. 2006): mix the velocity towards the force while the power
   /// is positive, stop and shorten the step when it turns negative; symplectic Euler update,
-  /// walls by projection.
-  void fire_step()
+  /// walls by projection. Then, if next_scale >= 0, set_scale(next_scale) in the same pass.
+  void fire_step(double next_scale = -1)
   {
     const std::size_t n = x_.size();
     Vec3* const x = x_.data();
@@ -121,19 +122,34 @@ public:
       npos_ = 0;
       dt_ = std::max(dt_ * 0.5, dt_min_);
       alpha_ = alpha0_;
-      std::fill(v_.begin(), v_.end(), Vec3::Zero());
     }
-    const double dt = dt_, s = s_;
+    const double dt = dt_, s = s_, s_next = next_scale >= 0 ? next_scale : s_;
+    s_ = s_next;
+    // why: one pass (one parallel region) for the velocity mixing or reset, the update, the
+    // walls at the old and the new scale, and the largest displacement since the last list
+    // build, which update_list then needs not compute (each sphere's arithmetic and every max
+    // are those of separate passes)
+    const bool track = xb_.size() == n;
+    const Vec3* const xb = xb_.data();
     const long nl = long(n);
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)
+    double d2 = 0;
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_) \
+    reduction(max : d2)
     for (long i = 0; i < nl; ++i)
     {
       if (P > 0)
         v[i] = mix * v[i] + c * f[i];
+      else
+        v[i] = Vec3::Zero();
       v[i] += dt * f[i];
       x[i] += dt * v[i];
       clamp(x[i], v[i], s * R_[i]);
+      if (s_next != s)
+        clamp(x[i], v[i], s_next * R_[i]);
+      if (track)
+        d2 = std::max(d2, (x[i] - xb[i]).squaredNorm());
     }
+    displacement2_ = track ? d2 : -1;
   }
 
   void reset_fire()
@@ -174,6 +190,7 @@ public:
     x_.resize(k);
     R_.resize(k);
     xb_.clear(); // forces a list rebuild
+    displacement2_ = -1;
     reset_fire();
     return removed;
   }
@@ -188,6 +205,7 @@ private:
   static constexpr std::size_t parallel_min_ = 2000;
   std::vector<Vec3> x_, xb_;          // centres, centres at the last list build
   double sb_ = 0;                     // s at the last list build
+  double displacement2_ = -1; // largest |x - xb|^2 after the last FIRE step; < 0: unknown
   OverlapPairs pairs_;                // Verlet pair list, in the cell list's order
   std::vector<OverlapPairs> chunk_pairs_; // threads 1, 2, ...: their layers' pairs
   std::vector<std::size_t> chunk_size_;   // pairs collected by each thread
@@ -205,20 +223,24 @@ private:
   {
     if (xb_.size() == x_.size())
     {
-      // why: four running maxima (max is exact in any order) let the loop pipeline
-      const std::size_t n = x_.size(), n4 = n - n % 4;
-      double d2 = 0;
-#pragma omp parallel num_threads(threads_) reduction(max : d2) if (n > parallel_min_)
+      double d2 = displacement2_; // from the last FIRE step, if nothing moved since
+      if (d2 < 0)
       {
-        double m[4] = {0, 0, 0, 0};
+        // why: four running maxima (max is exact in any order) let the loop pipeline
+        const std::size_t n = x_.size(), n4 = n - n % 4;
+        d2 = 0;
+#pragma omp parallel num_threads(threads_) reduction(max : d2) if (n > parallel_min_)
+        {
+          double m[4] = {0, 0, 0, 0};
 #pragma omp for schedule(static)
-        for (long i = 0; i < long(n4); i += 4)
-          for (int k = 0; k < 4; ++k)
-            m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
-        d2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+          for (long i = 0; i < long(n4); i += 4)
+            for (int k = 0; k < 4; ++k)
+              m[k] = std::max(m[k], (x_[i + k] - xb_[i + k]).squaredNorm());
+          d2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+        }
+        for (std::size_t i = n4; i < n; ++i)
+          d2 = std::max(d2, (x_[i] - xb_[i]).squaredNorm());
       }
-      for (std::size_t i = n4; i < n; ++i)
-        d2 = std::max(d2, (x_[i] - xb_[i]).squaredNorm());
       // why: two spheres approach by at most twice the largest displacement plus their growth
       if (2 * std::sqrt(d2) + 2 * std::max(0.0, s_ - sb_) * rmax_ < skin_)
         return;
@@ -269,6 +291,7 @@ private:
     }
     xb_ = x_;
     sb_ = s_;
+    displacement2_ = -1;
   }
 
   /// Collects the Verlet pairs of the cell layers [z_begin, z_end) into `out` (grown as
