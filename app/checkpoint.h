@@ -8,8 +8,8 @@
 // steps: to DIR/checkpoint.h5.tmp first, flushed to the disk, then renamed over the previous one,
 // so the file is always a complete checkpoint, the newest. It holds the complete state
 // (dem/core/state_archive.h: particles, bonds, solver, contacts, the driver's sums; in a coupled
-// run also the continuum's vectors and the tie's state) and the output so far (history rows,
-// snapshot lists, cracks), with a header: the format and its version, the dembridge version, the
+// run also the continuum's vectors and the tie's state) and the output so far (history.csv's
+// length, dem/core/history_file.h; snapshot lists, cracks), with a header: the format and its version, the dembridge version, the
 // step and time, and the case's effective parameters. `dembridge run CASE.prm --resume DIR`
 // rebuilds the model from the case, refuses a checkpoint of another case or format version with
 // the reason, restores the state and continues; on one thread the resumed run ends with the same
@@ -26,7 +26,8 @@ namespace dembridge::app
 {
 /// The checkpoint format this build writes and reads (docs/checkpoint.md). Version 2: rows in
 /// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
-inline constexpr int checkpoint_format_version = 2;
+/// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
+inline constexpr int checkpoint_format_version = 3;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
 struct CheckpointSettings

@@ -2,6 +2,7 @@
 #include "coupled_parameters.h"
 #include "coupling/measurements.h"
 #include "crack_output.h"
+#include "dem/core/history_file.h"
 #include "dem/measurements/measurements.h"
 #include "dem_parameters.h"
 #include "fem/fem_case.h"
@@ -91,9 +92,12 @@ public:
     }
     if (!root_)
       return;
-    history_.open(dir / "history.csv.part");
-    if (!history_)
-      throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
+    // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
+    history_file_.open(dir / "history.csv.part", checkpoint.resume,
+                       (dir / "history.csv").string());
+    history_ << std::setprecision(10);
+    if (checkpoint.resume)
+      return;
     history_ << "step,time,dem_kinetic_energy,dem_strain_energy,dem_damping_energy,"
                 "dem_external_work,dem_other_energy,fe_kinetic_energy,fe_strain_energy,"
                 "fe_damping_energy,fe_boundary_work,multiplier_work_particles,"
@@ -245,7 +249,7 @@ public:
   {
     if (!root_)
       return;
-    history_.close();
+    history_file_.close();
     std::filesystem::rename(dir_ / "history.csv.part", dir_ / "history.csv");
     cracks_.finish();
     if (!write_vtu_)
@@ -292,15 +296,8 @@ private:
     a.io("load_displacement", load_displacement_);
     if (a.loading() && load_.size() != load_displacement_.size())
       throw dem::InputError(a.where() + "load: not as long as 'load_displacement'");
-    history_.flush();
-    std::string history;
-    const std::string part = (dir_ / "history.csv.part").string();
-    if (!a.loading())
-    {
-      std::ifstream in(part, std::ios::binary);
-      history.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    a.io("history_csv", history);
+    long history_bytes = a.loading() ? 0 : long(history_file_.durable_size());
+    a.io("history_bytes", history_bytes);
     vtu_.visit_state(a);
     {
       dem::StateGroup fe(a, "fe_snapshots");
@@ -312,15 +309,8 @@ private:
     cracks_.visit_state(a, *problem.particle_solver());
     if (!a.loading())
       return;
-    // history.csv so far, and no snapshot of the interrupted run after the checkpoint
-    history_.close();
-    {
-      std::ofstream out(part, std::ios::binary | std::ios::trunc);
-      out << history;
-    }
-    history_.open(part, std::ios::app);
-    if (!history_)
-      throw std::runtime_error((dir_ / "history.csv").string() + ": cannot write");
+    // history.csv as at the checkpoint, and no snapshot of the interrupted run after it
+    history_file_.resume_at(history_bytes);
     remove_later_dem_snapshots(dir_, vtu_, cracks_.files());
     fem::remove_later_fe_snapshots(dir_, problem.fe_parameters().base_name, fe_files_);
   }
@@ -331,7 +321,8 @@ private:
   bool root_;
   ParticleVtuSeries vtu_;
   CrackOutput cracks_;
-  std::ofstream history_;
+  dem::HistoryFile history_file_;
+  std::ofstream& history_ = history_file_.stream();
   unsigned int cycle_ = 0;
   std::vector<std::pair<double, std::string>> fe_files_;
   int load_group_ = -1;

@@ -2,6 +2,7 @@
 #include "checkpoint.h"
 #include "contact_output.h"
 #include "crack_output.h"
+#include "dem/core/history_file.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/measurements/measurements.h"
 #include "dem/measurements/particle_stress.h"
@@ -83,10 +84,10 @@ public:
   {
     // Written under a temporary name and renamed when the run completes, so an interrupted
     // run never leaves a history that looks complete.
-    history_.open(dir / "history.csv.part");
-    if (!history_)
-      throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
-    history_ << history_header(model, contacts_);
+    // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
+    history_file_.open(dir / "history.csv.part", checkpoint.resume, history_path_.string());
+    if (!checkpoint.resume)
+      history_ << history_header(model, contacts_);
     history_ << std::setprecision(10);
   }
 
@@ -188,7 +189,7 @@ public:
 
   void finish()
   {
-    history_.close();
+    history_file_.close();
     std::filesystem::rename(history_path_.string() + ".part", history_path_);
     if (write_vtu_)
       vtu_.finish();
@@ -213,14 +214,8 @@ private:
     a.io("kinetic_share", share);
     a.io("flexural_load", flex_load_);
     a.io("flexural_deflection", flex_u_);
-    history_.flush();
-    std::string history;
-    if (!a.loading())
-    {
-      std::ifstream in(history_path_.string() + ".part", std::ios::binary);
-      history.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    a.io("history_csv", history);
+    long history_bytes = a.loading() ? 0 : long(history_file_.durable_size());
+    a.io("history_bytes", history_bytes);
     vtu_.visit_state(a);
     cracks_.visit_state(a, s);
     if (!a.loading())
@@ -230,15 +225,8 @@ private:
     kinetic_share_.clear();
     for (std::size_t k = 0; k < share.size(); ++k)
       kinetic_share_.emplace_back(share_time[k], share[k]);
-    // history.csv so far, and no snapshot of the interrupted run after the checkpoint
-    history_.close();
-    {
-      std::ofstream out(history_path_.string() + ".part", std::ios::binary | std::ios::trunc);
-      out << history;
-    }
-    history_.open(history_path_.string() + ".part", std::ios::app);
-    if (!history_)
-      throw std::runtime_error(history_path_.string() + ": cannot write");
+    // history.csv as at the checkpoint, and no snapshot of the interrupted run after it
+    history_file_.resume_at(history_bytes);
     remove_later_dem_snapshots(dir_, vtu_, cracks_.files());
   }
 
@@ -248,7 +236,8 @@ private:
   bool write_vtu_;
   std::filesystem::path dir_;
   std::filesystem::path history_path_;
-  std::ofstream history_;
+  dem::HistoryFile history_file_;
+  std::ofstream& history_ = history_file_.stream();
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
   std::vector<double> du_, force_, fixed_force_;
   std::vector<std::pair<double, double>> kinetic_share_;

@@ -5,6 +5,7 @@
 #include "explicit_dynamics.h"
 #include "parameters.h"
 
+#include "dem/core/history_file.h"
 #include "dem/core/state_archive.h"
 
 #include <algorithm>
@@ -155,7 +156,7 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   return summary;
 }
 /// What the dynamics loop carries from step to step beside the continuum (a checkpoint's
-/// /fem_run/): the history rows so far, the energy series and zero crossings that the summary
+/// /fem_run/): the length of history.csv so far, the energy series and zero crossings that the summary
 /// reads at the end, the probe component followed, the next checkpoint time.
 struct DynamicsLoopState
 {
@@ -164,7 +165,7 @@ struct DynamicsLoopState
   double previous_value = 0, previous_time = 0;
   int component = 0;
   double next_checkpoint_time = 0;
-  std::string history; ///< history.csv so far (rank 0; kept only with checkpoints)
+  long history_bytes = 0; ///< history.csv's length at the checkpoint (rank 0)
 
   void visit(dem::StateArchive& a)
   {
@@ -177,7 +178,7 @@ struct DynamicsLoopState
     a.io("previous_time", previous_time);
     a.io("component", component);
     a.io("next_checkpoint_time", next_checkpoint_time);
-    a.io("history_csv", history);
+    a.io("history_bytes", history_bytes);
   }
 };
 
@@ -210,7 +211,6 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   }
   const double interval = checkpoints ? checkpoints->interval : 0.0;
   const double wall_interval = checkpoints ? checkpoints->wall_interval : 0.0;
-  const bool keep_history = interval > 0 || wall_interval > 0;
   loop.next_checkpoint_time = interval;
 
   std::ostringstream header;
@@ -219,7 +219,6 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     header << ",probe" << k << "_ux,probe" << k << "_uy,probe" << k << "_uz";
   header << ",kinetic_energy,kinetic_energy_shadow,strain_energy,load_potential,"
             "total_energy,shadow_energy\n";
-  loop.history = header.str();
   const auto visit = [&](dem::StateArchive& a)
   {
     problem.visit_state(a);
@@ -234,18 +233,18 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     if (root)
       remove_later_fe_snapshots(output_dir, p.base_name, problem.snapshot_records());
   }
-  // history.csv: the rows so far (a resumed run's from its checkpoint), then one per step
-  const auto history_path = output_dir / "history.csv";
-  std::ofstream history;
+  // history.csv: the header (a resumed run's file cut back to its checkpoint), then one row a step
+  dem::HistoryFile history_file;
+  std::ofstream& history = history_file.stream();
   if (root)
   {
-    history.open(history_path, std::ios::binary | std::ios::trunc);
-    history << loop.history;
-    if (!history)
-      throw std::runtime_error(history_path.string() + ": cannot write");
+    const bool resumed = checkpoints && checkpoints->resume;
+    history_file.open(output_dir / "history.csv", resumed);
+    if (resumed)
+      history_file.resume_at(loop.history_bytes);
+    else
+      history << header.str();
   }
-  if (!keep_history)
-    loop.history.clear();
   if (p.write_vtu && loop.steps == 0)
     problem.output_results(output_dir, 0, 0.0);
 
@@ -282,8 +281,6 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
       row << "," << e.kinetic << "," << e.kinetic_shadow << "," << e.strain << ","
           << e.load_potential << "," << e.total() << "," << e.shadow_total() << "\n";
       history << row.str();
-      if (keep_history)
-        loop.history += row.str();
     }
     if (p.write_vtu && p.output_every > 0 && (n + 1) % p.output_every == 0)
       problem.output_results(output_dir, (n + 1) / p.output_every, problem.time());
@@ -306,7 +303,10 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     {
       problem.gather_state(); // collective
       if (root)
+      {
+        loop.history_bytes = long(history_file.durable_size());
         checkpoints->write(loop.steps, problem.time(), visit);
+      }
       last_checkpoint = clock::now();
     }
     if (checkpoints && checkpoints->after_step)

@@ -23,7 +23,8 @@ its ranks) once the first checkpoint exists; the refusals below are left to the 
 dynamics) every run of a DEM case is made, on one rank or with --np N. Then the refusals, each one
 line and exit code 1: a checkpoint of
 another case, a fresh run into a folder that holds a checkpoint, --resume without one, a
-checkpoint of the other mode (a DEM run's resumed as a coupled case and vice versa). Without
+checkpoint of the other mode (a DEM run's resumed as a coupled case and vice versa), a history
+file cut shorter than the checkpoint's record of it. Without
 --expect-cracks and --coupled also: a resume on two threads completes with the same bonds and E within 1e-6.
 Plain python3 (no numpy).
 """
@@ -255,6 +256,15 @@ def main():
     mode, other = ("coupled", "dem") if coupled else ("fem", "dem") if fem else ("dem", "coupled")
     refused(run(folder, ["--set", "Mode=" + other], resume=True),
             "Mode is '%s' there, '%s' here" % (mode, other), "a checkpoint of the other mode")
+    # the checkpoint holds history.csv's length, not its text: a shorter file is not the run's
+    short = os.path.join(out, "short_history")
+    shutil.rmtree(short, ignore_errors=True)
+    shutil.copytree(folder, short)
+    part = os.path.join(short, ".partial", "history.csv" if fem else "history.csv.part")
+    with open(part, "r+b") as f:
+        f.truncate(10)
+    refused(run(short, resume=True),
+            "history.csv: 10 bytes, but the checkpoint was written after ", "a shorter history")
     if fem:
         refused(run(os.path.join(out, "static"), ["--set", "FEM/problem=static"]),
                 "Output/checkpoint interval: a static FE run (FEM/problem = static) has no time "
