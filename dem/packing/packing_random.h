@@ -23,8 +23,8 @@
 //     more than 0.2 % away from s = 1.
 // The radii are the drawn ones times the final s (RandomPackingReport::radius_scale). On the
 // thesis specimen (0.25 x 0.1 x 0.1 m, r = 5 mm) this gives 2874 spheres and porosity
-// 0.397-0.399 for seeds 1-3 (thesis Table 2: 2855-2903 and 0.39-0.40). Serial and seeded: the
-// same seed gives bitwise the same packing from the same binary.
+// 0.397-0.399 for seeds 1-3 (thesis Table 2: 2855-2903 and 0.39-0.40). Seeded: the
+// same seed gives bitwise the same packing from the same binary, on any number of threads.
 #include "dem/core/particle_store.h"
 #include <string>
 
