@@ -1,4 +1,5 @@
 #include "checkpoint.h"
+#include "dem/core/fsync_path.h"
 #include "hdf5_archive.h"
 #include "provenance.h"
 #include "version.h"
@@ -7,11 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <deal.II/base/mpi.h>
-#include <fcntl.h>
 #include <hdf5.h>
 #include <map>
 #include <sstream>
-#include <unistd.h>
 
 namespace dembridge::app
 {
@@ -119,15 +118,6 @@ std::map<std::string, std::string> entries(const std::string& text)
     }
   }
   return out;
-}
-
-void fsync_path(const fs::path& path)
-{
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0)
-    return;
-  ::fsync(fd);
-  ::close(fd);
 }
 } // namespace
 
@@ -342,9 +332,9 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
     if (H5Fflush(h.get(), H5F_SCOPE_GLOBAL) < 0)
       throw std::runtime_error(tmp.string() + ": cannot write the checkpoint (disk full?)");
   }
-  fsync_path(tmp); // the data is on the disk before the name points at it
+  dem::fsync_path(tmp); // the data is on the disk before the name points at it
   fs::rename(tmp, file);
-  fsync_path(file.parent_path());
+  dem::fsync_path(file.parent_path());
 }
 
 void read_checkpoint(const fs::path& file, const std::function<void(dem::StateArchive&)>& visit)

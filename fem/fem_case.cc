@@ -156,8 +156,8 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   return summary;
 }
 /// What the dynamics loop carries from step to step beside the continuum (a checkpoint's
-/// /fem_run/): the length of history.csv so far, the energy series and zero crossings that the summary
-/// reads at the end, the probe component followed, the next checkpoint time.
+/// /fem_run/): the length of history.csv so far, the energy series and zero crossings that the
+/// summary reads at the end, the probe component followed, the next checkpoint time.
 struct DynamicsLoopState
 {
   long steps = 0; ///< steps done

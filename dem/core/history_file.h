@@ -4,13 +4,12 @@
 // size however long the run has been (one row per step would make each checkpoint, and the run's
 // I/O, grow without bound). A resumed run cuts the file back to the checkpoint's length and
 // appends: it then ends with the uninterrupted run's file, byte for byte.
+#include "dem/core/fsync_path.h"
 #include "dem/core/types.h"
 #include <cstdint>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace dembridge::dem
 {
@@ -38,13 +37,7 @@ public:
     out_.flush();
     if (!out_)
       throw std::runtime_error(shown_ + ": write failed");
-    // why: fsync through a second descriptor flushes the file's data as well (Linux, POSIX)
-    const int fd = ::open(path_.c_str(), O_RDONLY);
-    if (fd >= 0)
-    {
-      ::fsync(fd);
-      ::close(fd);
-    }
+    fsync_path(path_);
     return std::int64_t(std::filesystem::file_size(path_));
   }
 
