@@ -87,6 +87,10 @@ public:
       exports_.resize(std::size_t(nt));
       chunk_worst_.assign(std::size_t(nt), 0.0);
       const std::size_t nx = x_in.size();
+      // Chunk c holds the pairs [chunk_begin(c), chunk_begin(c + 1)), multiples of 8; its
+      // contacts start at slot_base(c) of each scratch array (8 spare slots a chunk).
+      const auto chunk_begin = [&](int c) { return np / 8 * std::size_t(c) / std::size_t(nt) * 8; };
+      const auto slot_base = [&](int c) { return chunk_begin(c) + 8 * std::size_t(c); };
 #pragma omp parallel num_threads(nt)
       {
 #if defined(_OPENMP)
@@ -94,9 +98,7 @@ public:
 #else
         const int t = 0;
 #endif
-        const std::size_t b = np / 8 * std::size_t(t) / std::size_t(nt) * 8;
-        const std::size_t e = np / 8 * std::size_t(t + 1) / std::size_t(nt) * 8;
-        const std::size_t base = b + 8 * std::size_t(t);
+        const std::size_t b = chunk_begin(t), e = chunk_begin(t + 1), base = slot_base(t);
         std::fill(f + nx * std::size_t(t) / std::size_t(nt),
                   f + nx * std::size_t(t + 1) / std::size_t(nt), Vec3::Zero());
         chunk_count_[std::size_t(t)] =
@@ -133,7 +135,7 @@ public:
         double overlap_sum = 0;
         for (int c = 0; c < nt; ++c)
         {
-          const std::size_t cb = np / 8 * std::size_t(c) / std::size_t(nt) * 8 + 8 * std::size_t(c);
+          const std::size_t cb = slot_base(c);
           const double* const cfx = contact_.data() + 6 * stride + cb;
           const double* const cfy = cfx + stride;
           const double* const cfz = cfy + stride;
