@@ -18,9 +18,11 @@
 //     volume fraction asks for, and repeat 2-3 without the cap at s = 1, so that the packing
 //     jams again at s ~ 1 (within 0.2 % for ~3000 spheres; up to two passes, the closest kept).
 //     With predict_jamming the first pass is already such a pass, its removal from the
-//     predicted jamming porosity (predicted_jamming_porosity; none for a target up to 0.003
-//     looser than it, which may still jam), and the measured passes follow only if it jams
-//     more than 0.2 % away from s = 1.
+//     predicted jamming porosity (predicted_jamming_porosity; none for a target up to 0.005
+//     looser than it, where the capped pass would jam short of s = 1 too), and the measured
+//     passes follow only if it jams more than 0.2 % away from s = 1; for a target looser than
+//     the prediction they first keep every sphere (removal would only move the jam further
+//     past s = 1). A pass that removes nothing is never run twice (it would repeat itself).
 // The radii are the drawn ones times the final s (RandomPackingReport::radius_scale). On the
 // thesis specimen (0.25 x 0.1 x 0.1 m, r = 5 mm) this gives 2874 spheres and porosity
 // 0.397-0.399 for seeds 1-3 (thesis Table 2: 2855-2903 and 0.39-0.40). Seeded: the

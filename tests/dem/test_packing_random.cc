@@ -214,6 +214,42 @@ TEST(RandomPacking, PredictedJammingPacksTheSameInOnePass)
   EXPECT_NEAR(predicted_jamming_porosity(settings(0.0025)), 0.3788, 0.001);
 }
 
+// A target just looser than the box's jamming porosity p_J (packing_random.h, step 4): no
+// jammed packing exists at it, the capped pass jams short of s = 1 (it does not over-compress,
+// so it jams looser, here ~0.409 against p_J ~0.398), and of the measured estimate's three
+// passes the closest to s = 1 was, in these two cases, once the pass that keeps every sphere
+// (0.004 looser than predicted, jammed at s ~1.002) and once the capped one (0.006 looser). The
+// predicted estimate runs that whole pass first (within 0.005 of p_J) or right after the capped
+// one, skips the removal pass (spheres left out only move the jam further past s = 1) and never
+// runs the whole pass twice: bitwise the measured estimate's packing, in at most 0.75 of its
+// iterations (one or two passes of three).
+TEST(RandomPacking, TargetJustLooserThanJammingSkipsUselessPasses)
+{
+  for (const double looser : {0.004, 0.006})
+  {
+    ParticleStore p[2];
+    RandomPackingReport rep[2];
+    for (int predicted = 0; predicted < 2; ++predicted)
+    {
+      auto s = settings(0.005);
+      s.target_porosity = predicted_jamming_porosity(s) + looser;
+      s.predict_jamming = predicted == 1;
+      rep[predicted] = generate_random_packing(s, 917, p[predicted]);
+      print(std::string(predicted ? "predicted" : "measured") + ", target p_J + " +
+                std::to_string(looser),
+            rep[predicted]);
+    }
+    EXPECT_EQ(rep[1].removed, 0u);
+    EXPECT_LE(double(rep[1].iterations), 0.75 * double(rep[0].iterations)) << looser;
+    ASSERT_EQ(p[1].size(), p[0].size());
+    for (std::size_t i = 0; i < p[0].size(); ++i)
+    {
+      ASSERT_EQ(p[1].position[i], p[0].position[i]) << "sphere " << i; // exact equality
+      ASSERT_EQ(p[1].radius[i], p[0].radius[i]);
+    }
+  }
+}
+
 // Polydisperse: radii within the stated bounds (times the final radius scale, which stays
 // within 1 %), sample mean within 2 % of the target (N ~ 3000, so the sampling error of the
 // mean is ~0.2 %), porosity at most 0.40 as for equal spheres (polydispersity packs denser).
