@@ -6,8 +6,8 @@
 #   sh bench/static_bench.sh BUILD_DIR [hcp radii] [random radii] [packing radii]
 # Defaults: HCP 2.5, 1.575, 1.0 mm (26 k, 107 k, 432 k particles); random 2.5, 1.575 mm (24 k,
 # 95 k spheres); packing 5, 2.5, 1.575, 1.0 mm (2.9 k to 370 k spheres). One point of 1 M
-# particles needs about 16 GB for GAMG and 20 min of packing: add it where the machine has them
-# (HCP: 0.00074; packing: 0.00074).
+# particles needs 16 GiB for GAMG (measured) and about 16 min of packing on one thread: add it
+# where the machine has them (HCP: 0.00074; packing: 0.00072).
 set -e
 build=${1:?usage: static_bench.sh BUILD_DIR [hcp radii] [random radii] [packing radii]}
 hcp=${2:-"0.0025 0.001575 0.001"}
