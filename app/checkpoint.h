@@ -27,7 +27,9 @@ namespace dembridge::app
 /// The checkpoint format this build writes and reads (docs/checkpoint.md). Version 2: rows in
 /// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
 /// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
-inline constexpr int checkpoint_format_version = 3;
+/// Version 4: FE dynamics runs store running summaries of their energies and zero crossings
+/// instead of the series (one value a step).
+inline constexpr int checkpoint_format_version = 4;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
 struct CheckpointSettings

@@ -6,6 +6,7 @@
 #include "parameters.h"
 
 #include "dem/core/history_file.h"
+#include "dem/core/running_series.h"
 #include "dem/core/state_archive.h"
 
 #include <algorithm>
@@ -156,12 +157,15 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   return summary;
 }
 /// What the dynamics loop carries from step to step beside the continuum (a checkpoint's
-/// /fem_run/): the length of history.csv so far, the energy series and zero crossings that the
-/// summary reads at the end, the probe component followed, the next checkpoint time.
+/// /fem_run/): the length of history.csv so far, the running summaries of the energies and
+/// the zero crossings that the summary reads at the end (a few numbers however long the run),
+/// the probe component followed, the next checkpoint time.
 struct DynamicsLoopState
 {
   long steps = 0; ///< steps done
-  std::vector<double> shadow, total, crossings;
+  dem::RunningSeries shadow, total;
+  long crossings = 0; ///< zero crossings of the followed component
+  double first_crossing = 0, last_crossing = 0;
   double previous_value = 0, previous_time = 0;
   int component = 0;
   double next_checkpoint_time = 0;
@@ -171,9 +175,11 @@ struct DynamicsLoopState
   {
     dem::StateGroup group(a, "fem_run");
     a.io("steps", steps);
-    a.io("shadow_energy", shadow);
-    a.io("total_energy", total);
+    shadow.visit(a, "shadow_energy");
+    total.visit(a, "total_energy");
     a.io("zero_crossings", crossings);
+    a.io("first_crossing", first_crossing);
+    a.io("last_crossing", last_crossing);
     a.io("previous_value", previous_value);
     a.io("previous_time", previous_time);
     a.io("component", component);
@@ -260,15 +266,18 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
       u.push_back(problem.probe_vector(probe));
     problem.step(dt); // energies below belong to step n (time t_n)
     const auto& e = problem.energies();
-    loop.shadow.push_back(e.shadow_total());
-    loop.total.push_back(e.total());
+    loop.shadow.add(e.shadow_total());
+    loop.total.add(e.total());
     if (!u.empty())
     {
       const double value = u[0][loop.component];
       if (n > 0 && loop.previous_value * value < 0)
-        loop.crossings.push_back(loop.previous_time + (t_n - loop.previous_time) *
-                                                          loop.previous_value /
-                                                          (loop.previous_value - value));
+      {
+        loop.last_crossing = loop.previous_time + (t_n - loop.previous_time) * loop.previous_value /
+                                                      (loop.previous_value - value);
+        if (loop.crossings++ == 0)
+          loop.first_crossing = loop.last_crossing;
+      }
       loop.previous_value = value;
       loop.previous_time = t_n;
     }
@@ -315,9 +324,7 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   if (p.write_vtu && (p.output_every == 0 || p.n_steps % p.output_every != 0))
     problem.output_results(output_dir, p.output_every == 0 ? 1 : p.n_steps / p.output_every + 1,
                            problem.time());
-  const std::vector<double>& shadow = loop.shadow;
-  const std::vector<double>& total = loop.total;
-  const std::vector<double>& crossings = loop.crossings;
+  const dem::RunningSeries& shadow = loop.shadow;
 
   nlohmann::json summary;
   summary["n_dofs"] = problem.n_dofs();
@@ -326,38 +333,21 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   summary["time_step"] = dt;
   summary["stable_time_step"] = problem.stable_time_step();
   summary["end_time"] = problem.time();
-  const auto relative_range = [](const std::vector<double>& v)
+  if (shadow.count > 0 && shadow.first != 0)
   {
-    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-    return (*hi - *lo) / std::abs(v.front());
-  };
-  // Drift: least-squares slope of the shadow energy times the duration, relative to H_0.
-  double mean_n = 0, mean_e = 0, sxy = 0, sxx = 0;
-  for (std::size_t k = 0; k < shadow.size(); ++k)
-  {
-    mean_n += double(k) / shadow.size();
-    mean_e += shadow[k] / shadow.size();
+    summary["initial_energy"] = shadow.first;
+    summary["shadow_energy_relative_oscillation"] = shadow.relative_range();
+    // drift: the least-squares line's change over the run, relative to H_0
+    summary["shadow_energy_relative_drift"] = shadow.fitted_change() / std::abs(shadow.first);
+    summary["total_energy_relative_oscillation"] = loop.total.relative_range();
   }
-  for (std::size_t k = 0; k < shadow.size(); ++k)
-  {
-    sxy += (k - mean_n) * (shadow[k] - mean_e);
-    sxx += (k - mean_n) * (k - mean_n);
-  }
-  if (!shadow.empty() && shadow.front() != 0)
-  {
-    summary["initial_energy"] = shadow.front();
-    summary["shadow_energy_relative_oscillation"] = relative_range(shadow);
-    summary["shadow_energy_relative_drift"] =
-        (sxx > 0 ? sxy / sxx * shadow.size() : 0.0) / std::abs(shadow.front());
-    summary["total_energy_relative_oscillation"] = relative_range(total);
-  }
-  if (crossings.size() >= 2)
+  if (loop.crossings >= 2)
   {
     // Successive zero crossings are half a period apart: first to last crossing.
     const double half_period =
-        (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+        (loop.last_crossing - loop.first_crossing) / double(loop.crossings - 1);
     summary["natural_frequency"] = 1.0 / (2.0 * half_period);
-    summary["zero_crossings"] = crossings.size();
+    summary["zero_crossings"] = loop.crossings;
   }
   write_timer_log(problem.timer(), output_dir, comm);
   return summary;
