@@ -258,10 +258,11 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   auto last_checkpoint = clock::now();
   std::ostringstream row;
   row.precision(12);
+  std::vector<Tensor<1, 3>> u; // the probes' displacements, refilled each step
   for (unsigned int n = unsigned(loop.steps); n < p.n_steps; ++n)
   {
     const double t_n = problem.time();
-    std::vector<Tensor<1, 3>> u;
+    u.clear();
     for (const auto& probe : probes)
       u.push_back(problem.probe_vector(probe));
     problem.step(dt); // energies below belong to step n (time t_n)
