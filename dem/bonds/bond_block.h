@@ -9,13 +9,11 @@
 #include "dem/bonds/bond_kernel.h"
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
+#include "dem/core/simd_gather.h"
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
 
 namespace dembridge::dem
 {
@@ -76,51 +74,49 @@ struct alignas(64) BondBlock
   }
 };
 
-/// rows[d][j] = data[n * index[j] + d] for d < n, j < W: the records (3 or 4 doubles) of W
-/// particles turned into n lane-major rows. Writes 4 rows; for n = 3 the fourth holds junk and
-/// is overwritten by the caller's next gather (bond_law_block). With AVX-512 each record is one
-/// (masked) vector load and the 8 x 4 transpose is done in registers (why: 8 scalar loads and
-/// stores per row were half of the block's time); otherwise, or for another W, scalar copies.
-template <int W, int n>
-[[gnu::always_inline]] inline void gather_rows(const double* data, const std::int32_t* index,
-                                               double (*rows)[W])
+/// The lanes of a block: bond k0 + j's law in lane j (full: m = W and k = j; else bonds past m
+/// repeat the last), from the gathered rows g and the constants at k0.
+template <bool dashpots, bool full, int W, int n_rows>
+[[gnu::always_inline]] inline void
+bond_lanes(const double (&g)[n_rows][W], const double* L0, const double* E0, const double* kn,
+           const double* ks, const double* ktor, const double* kben, const double* s,
+           const double* ct, const double* cr, int m, BondBlock& out)
 {
-  static_assert(n == 3 || n == 4);
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-  if constexpr (W == 8)
-  {
-    auto load = [&](int j)
-    {
-      const double* p = data + std::size_t(n) * std::size_t(index[j]);
-      // masked for n = 3: the fourth double may lie past the array's end (no fault, no read)
-      if constexpr (n == 3)
-        return _mm256_maskz_loadu_pd(0x7, p);
-      else
-        return _mm256_loadu_pd(p);
-    };
-    auto pair = [&](int j) // lane j in the low half, lane j + 4 in the high half
-    { return _mm512_insertf64x4(_mm512_castpd256_pd512(load(j)), load(j + 4), 1); };
-    const __m512d z0 = pair(0), z1 = pair(1), z2 = pair(2), z3 = pair(3);
-    const __m512d t0 = _mm512_unpacklo_pd(z0, z1); // r0c0 r1c0 r0c2 r1c2 | r4c0 r5c0 r4c2 r5c2
-    const __m512d t1 = _mm512_unpackhi_pd(z0, z1); // the same with c1, c3
-    const __m512d t2 = _mm512_unpacklo_pd(z2, z3); // r2c0 r3c0 r2c2 r3c2 | r6c0 r7c0 ...
-    const __m512d t3 = _mm512_unpackhi_pd(z2, z3);
-    const __m512i even = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
-    const __m512i odd = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
-    _mm512_store_pd(rows[0], _mm512_permutex2var_pd(t0, even, t2));
-    _mm512_store_pd(rows[1], _mm512_permutex2var_pd(t1, even, t3));
-    _mm512_store_pd(rows[2], _mm512_permutex2var_pd(t0, odd, t2));
-    _mm512_store_pd(rows[3], _mm512_permutex2var_pd(t1, odd, t3));
-    return;
-  }
-#endif
+#pragma GCC ivdep
   for (int j = 0; j < W; ++j)
   {
-    std::size_t i = std::size_t(index[j]);
-    asm("" : "+r"(i)); // keeps this loop scalar (no emulated gathers)
-    const double* p = data + std::size_t(n) * i;
-    for (int d = 0; d < n; ++d)
-      rows[d][j] = p[d];
+    const long k = full ? long(j) : long(std::min(j, m - 1));
+    const BondConstants c{L0[k],   Vec3(E0[3 * k], E0[3 * k + 1], E0[3 * k + 2]),
+                          kn[k],   ks[k],
+                          ktor[k], kben[k],
+                          s[k],    ct[k],
+                          cr[k]};
+    BondForces f;
+    const double xa[3] = {g[0][j], g[1][j], g[2][j]}, xb[3] = {g[3][j], g[4][j], g[5][j]};
+    const double qa[4] = {g[6][j], g[7][j], g[8][j], g[9][j]};
+    const double qb[4] = {g[10][j], g[11][j], g[12][j], g[13][j]};
+    double va[3] = {0, 0, 0}, vb[3] = {0, 0, 0}, wa[3] = {0, 0, 0}, wb[3] = {0, 0, 0};
+    if constexpr (dashpots)
+      for (int d = 0; d < 3; ++d)
+        va[d] = g[14 + d][j], vb[d] = g[17 + d][j], wa[d] = g[20 + d][j], wb[d] = g[23 + d][j];
+    bond_law<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, c, f);
+    out.Fc[0][j] = f.Fc[0], out.Fc[1][j] = f.Fc[1], out.Fc[2][j] = f.Fc[2];
+    out.Mc[0][j] = f.Mc[0], out.Mc[1][j] = f.Mc[1], out.Mc[2][j] = f.Mc[2];
+    out.Fd[0][j] = f.Fd[0], out.Fd[1][j] = f.Fd[1], out.Fd[2][j] = f.Fd[2];
+    out.Md[0][j] = f.Md[0], out.Md[1][j] = f.Md[1], out.Md[2][j] = f.Md[2];
+    out.e[0][j] = f.e[0], out.e[1][j] = f.e[1], out.e[2][j] = f.e[2];
+    out.ra[j] = f.ra, out.rb[j] = f.rb, out.strain_energy[j] = f.strain_energy;
+    // the resultants' moments (bond_kernel.h)
+    double ma[3], mb[3];
+    resultant_moments(f.Fc, f.Mc, f, ma, mb);
+    for (int d = 0; d < 3; ++d)
+      out.Ma[d][j] = ma[d], out.Mb[d][j] = mb[d];
+    if constexpr (dashpots)
+    {
+      resultant_moments(f.Fd, f.Md, f, ma, mb);
+      for (int d = 0; d < 3; ++d)
+        out.Mda[d][j] = ma[d], out.Mdb[d][j] = mb[d];
+    }
   }
 }
 
@@ -156,41 +152,11 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
     gather_rows<W, 3>(Wv, ia, g + 20);
     gather_rows<W, 3>(Wv, ib, g + 23);
   }
-#pragma GCC ivdep
-  for (int j = 0; j < W; ++j)
-  {
-    const int k = std::min(j, m - 1);
-    const BondConstants c{L0[k],   Vec3(E0[3 * k], E0[3 * k + 1], E0[3 * k + 2]),
-                          kn[k],   ks[k],
-                          ktor[k], kben[k],
-                          s[k],    ct[k],
-                          cr[k]};
-    BondForces f;
-    const double xa[3] = {g[0][j], g[1][j], g[2][j]}, xb[3] = {g[3][j], g[4][j], g[5][j]};
-    const double qa[4] = {g[6][j], g[7][j], g[8][j], g[9][j]};
-    const double qb[4] = {g[10][j], g[11][j], g[12][j], g[13][j]};
-    double va[3] = {0, 0, 0}, vb[3] = {0, 0, 0}, wa[3] = {0, 0, 0}, wb[3] = {0, 0, 0};
-    if constexpr (dashpots)
-      for (int d = 0; d < 3; ++d)
-        va[d] = g[14 + d][j], vb[d] = g[17 + d][j], wa[d] = g[20 + d][j], wb[d] = g[23 + d][j];
-    bond_law<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, c, f);
-    out.Fc[0][j] = f.Fc[0], out.Fc[1][j] = f.Fc[1], out.Fc[2][j] = f.Fc[2];
-    out.Mc[0][j] = f.Mc[0], out.Mc[1][j] = f.Mc[1], out.Mc[2][j] = f.Mc[2];
-    out.Fd[0][j] = f.Fd[0], out.Fd[1][j] = f.Fd[1], out.Fd[2][j] = f.Fd[2];
-    out.Md[0][j] = f.Md[0], out.Md[1][j] = f.Md[1], out.Md[2][j] = f.Md[2];
-    out.e[0][j] = f.e[0], out.e[1][j] = f.e[1], out.e[2][j] = f.e[2];
-    out.ra[j] = f.ra, out.rb[j] = f.rb, out.strain_energy[j] = f.strain_energy;
-    // the resultants' moments (bond_kernel.h)
-    double ma[3], mb[3];
-    resultant_moments(f.Fc, f.Mc, f, ma, mb);
-    for (int d = 0; d < 3; ++d)
-      out.Ma[d][j] = ma[d], out.Mb[d][j] = mb[d];
-    if constexpr (dashpots)
-    {
-      resultant_moments(f.Fd, f.Md, f, ma, mb);
-      for (int d = 0; d < 3; ++d)
-        out.Mda[d][j] = ma[d], out.Mdb[d][j] = mb[d];
-    }
-  }
+  // why: a full block reads its constants at k = j (contiguous vector loads in 64-bit lanes);
+  // a clamped index makes them emulated gathers and, in 32-bit ints, halves the vector width
+  if (m == W)
+    bond_lanes<dashpots, true>(g, L0, E0, kn, ks, ktor, kben, s, ct, cr, W, out);
+  else
+    bond_lanes<dashpots, false>(g, L0, E0, kn, ks, ktor, kben, s, ct, cr, m, out);
 }
 } // namespace dembridge::dem

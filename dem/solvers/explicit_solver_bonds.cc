@@ -27,6 +27,34 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   const BondLawArrays arrays(p_, b_);
   BondBlock block;
   BondForces f;
+  // why: consecutive bonds share their lower particle (renumbering.h sorts them so); its sums
+  // stay in registers while they do, and only the other end is added in memory. A particle's
+  // contributions still arrive in bond order, so the sums are bitwise those of adding each bond
+  // in memory, for any bond order (a run ends when the lower particle changes).
+  int run = -1; // the lower particle of the current run, -1: none
+  double run_F[3] = {}, run_M[3] = {}, run_Fd[3] = {}, run_Md[3] = {};
+  auto end_run = [&]
+  {
+    if (run < 0)
+      return;
+    for (int d = 0; d < 3; ++d)
+    {
+      F[run][d] = run_F[d], M[run][d] = run_M[d];
+      if constexpr (dashpots)
+        D[run].force[d] = run_Fd[d], D[run].torque[d] = run_Md[d];
+    }
+  };
+  auto start_run = [&](int lower)
+  {
+    end_run();
+    run = lower;
+    for (int d = 0; d < 3; ++d)
+    {
+      run_F[d] = F[run][d], run_M[d] = M[run][d];
+      if constexpr (dashpots)
+        run_Fd[d] = D[run].force[d], run_Md[d] = D[run].torque[d];
+    }
+  };
   for (std::size_t k0 = begin; k0 < end; k0 += BondBlock::W)
   {
     const int m = int(std::min<std::size_t>(BondBlock::W, end - k0));
@@ -124,19 +152,26 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
           for (int d = 0; d < 3; ++d)
             f.Fc[d] *= carried, f.Mc[d] *= carried;
       }
-      // the particle resultants (bond_resultants, formed in the block's lanes), times 1 - D
+      // the particle resultants (bond_resultants, formed in the block's lanes), times 1 - D:
+      // -F_c and M_a on a, F_c and M_b on b (x - y and x + (-y) are the same double)
+      const bool a_lower = ia < ib;
+      const int lower = a_lower ? ia : ib, upper = a_lower ? ib : ia;
+      if (lower != run)
+        start_run(lower);
       for (int d = 0; d < 3; ++d)
       {
         const double Fc = carried * block.Fc[d][j];
-        F[ia][d] -= Fc, M[ia][d] += carried * block.Ma[d][j];
-        F[ib][d] += Fc, M[ib][d] += carried * block.Mb[d][j];
+        const double Ma = carried * block.Ma[d][j], Mb = carried * block.Mb[d][j];
+        run_F[d] += a_lower ? -Fc : Fc, run_M[d] += a_lower ? Ma : Mb;
+        F[upper][d] += a_lower ? Fc : -Fc, M[upper][d] += a_lower ? Mb : Ma;
       }
       if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
         for (int d = 0; d < 3; ++d)
         {
           const double Fdc = carried * block.Fd[d][j];
-          D[ia].force[d] -= Fdc, D[ia].torque[d] += carried * block.Mda[d][j];
-          D[ib].force[d] += Fdc, D[ib].torque[d] += carried * block.Mdb[d][j];
+          const double Mda = carried * block.Mda[d][j], Mdb = carried * block.Mdb[d][j];
+          run_Fd[d] += a_lower ? -Fdc : Fdc, run_Md[d] += a_lower ? Mda : Mdb;
+          D[upper].force[d] += a_lower ? Fdc : -Fdc, D[upper].torque[d] += a_lower ? Mdb : Mda;
         }
       if constexpr (record)
       {
@@ -155,6 +190,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
       }
     }
   }
+  end_run();
 }
 
 template <bool record, bool dashpots, FailureMode failure>
