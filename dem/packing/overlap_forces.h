@@ -13,6 +13,7 @@
 // only computes the pairs' terms eight at a time with the same correctly rounded operations.
 // Included only by packing_random.cc, which is built without fused multiply-adds
 // (dem/CMakeLists.txt), so both paths give bitwise the same packing on every CPU.
+#include "dem/core/simd_gather.h"
 #include "dem/core/types.h"
 #include <algorithm>
 #include <cmath>
@@ -101,9 +102,8 @@ public:
         const std::size_t b = chunk_begin(t), e = chunk_begin(t + 1), base = slot_base(t);
         std::fill(f + nx * std::size_t(t) / std::size_t(nt),
                   f + nx * std::size_t(t + 1) / std::size_t(nt), Vec3::Zero());
-        chunk_count_[std::size_t(t)] =
-            pack_contacts(pairs, x_in, s, b, e, contact_.data() + base, stride,
-                          contact_pair_.data() + base, stride);
+        chunk_count_[std::size_t(t)] = pack_contacts(pairs, x_in, s, b, e, contact_.data() + base,
+                                                     stride, contact_pair_.data() + base, stride);
         const std::size_t nc_own = chunk_count_[std::size_t(t)];
         chunk_worst_[std::size_t(t)] =
             contact_terms(s, nc_own, contact_.data() + base, stride, need_worst);
@@ -208,8 +208,8 @@ public:
   }
 
 private:
-  std::vector<double> contact_;   // vector path: per-contact scratch (10 arrays of `stride`)
-  std::vector<int> contact_pair_; // vector path: the contacts' i and j (2 arrays)
+  std::vector<double> contact_;          // vector path: per-contact scratch (10 arrays of `stride`)
+  std::vector<int> contact_pair_;        // vector path: the contacts' i and j (2 arrays)
   std::vector<std::size_t> chunk_count_; // contacts of each thread's chunk
   std::vector<double> chunk_worst_;      // largest overlap ratio of each chunk
   std::vector<std::vector<int>> exports_; // each chunk's contacts touching other threads' spheres
@@ -225,7 +225,6 @@ private:
   {
     const double* X = x_in[0].data();
     const __m512d vs = _mm512_set1_pd(s);
-    const __m256i three = _mm256_set1_epi32(3);
     double *const cx = c, *const cy = cx + stride, *const cz = cy + stride;
     double *const cd2 = cz + stride, *const csum = cd2 + stride, *const cmin = csum + stride;
     int *const ci = cij, *const cj = cij + pair_stride;
@@ -234,13 +233,13 @@ private:
     {
       const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.i[k]));
       const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.j[k]));
-      const __m256i i3 = _mm256_mullo_epi32(vi, three), j3 = _mm256_mullo_epi32(vj, three);
-      const __m512d dx =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X, 8), _mm512_i32gather_pd(i3, X, 8));
-      const __m512d dy =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X + 1, 8), _mm512_i32gather_pd(i3, X + 1, 8));
-      const __m512d dz =
-          _mm512_sub_pd(_mm512_i32gather_pd(j3, X + 2, 8), _mm512_i32gather_pd(i3, X + 2, 8));
+      // x_i and x_j of the eight pairs as rows x, y, z (and a spare)
+      alignas(64) double xi[4][8], xj[4][8];
+      gather_rows<8, 3>(X, &pairs.i[k], xi);
+      gather_rows<8, 3>(X, &pairs.j[k], xj);
+      const __m512d dx = _mm512_sub_pd(_mm512_load_pd(xj[0]), _mm512_load_pd(xi[0]));
+      const __m512d dy = _mm512_sub_pd(_mm512_load_pd(xj[1]), _mm512_load_pd(xi[1]));
+      const __m512d dz = _mm512_sub_pd(_mm512_load_pd(xj[2]), _mm512_load_pd(xi[2]));
       // (dx^2 + dy^2) + dz^2, as Eigen's squaredNorm sums
       const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
                                        _mm512_mul_pd(dz, dz));
