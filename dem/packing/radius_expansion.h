@@ -4,6 +4,7 @@
 // current radii s R and centres x, FIRE relaxation on the harmonic overlap energy (unit
 // stiffness and masses, overlap_forces.h), growth, shrinking and the random removal of spheres.
 // Internal to packing_random.cc.
+#include "dem/core/simd_gather.h"
 #include "dem/packing/cell_list.h"
 #include "dem/packing/overlap_forces.h"
 #include "dem/packing/packing_random.h"
@@ -43,9 +44,18 @@ public:
     rmax_ = *std::max_element(R_.begin(), R_.end());
   }
 
-  std::size_t size() const { return R_.size(); }
-  double scale() const { return s_; }
-  const std::vector<Vec3>& positions() const { return x_; }
+  std::size_t size() const
+  {
+    return R_.size();
+  }
+  double scale() const
+  {
+    return s_;
+  }
+  const std::vector<Vec3>& positions() const
+  {
+    return x_;
+  }
   /// Sum of R_i^3.
   double volume() const
   {
@@ -82,8 +92,8 @@ public:
   {
     update_list();
     const OverlapSums sums =
-        overlap_.compute(pairs_, x_, s_, f_, vector_path_,
-                         x_.size() > parallel_min_ ? threads_ : 1, need_mean, need_worst);
+        overlap_.compute(pairs_, x_, s_, f_, vector_path_, x_.size() > parallel_min_ ? threads_ : 1,
+                         need_mean, need_worst);
     return {sums.contacts ? sums.sum_overlap / double(sums.contacts) / (s_ * rmean_) : 0.0,
             sums.worst};
   }
@@ -133,8 +143,9 @@ public:
     const Vec3* const xb = xb_.data();
     const long nl = long(n);
     double d2 = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_) \
-    reduction(max : d2)
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)             \
+    reduction(max                                                                                  \
+              : d2)
     for (long i = 0; i < nl; ++i)
     {
       if (P > 0)
@@ -205,15 +216,15 @@ private:
   // thread (two threads against one, best / median of 7 alternating rounds on this VM: 669
   // spheres 1.01x / 0.88x, 1,283 spheres 1.19x / 1.07x, 2,874 spheres 1.31x / 1.26x)
   static constexpr std::size_t parallel_min_ = 1000;
-  std::vector<Vec3> x_, xb_;          // centres, centres at the last list build
-  double sb_ = 0;                     // s at the last list build
+  std::vector<Vec3> x_, xb_;  // centres, centres at the last list build
+  double sb_ = 0;             // s at the last list build
   double displacement2_ = -1; // largest |x - xb|^2 after the last FIRE step; < 0: unknown
-  OverlapPairs pairs_;                // Verlet pair list, in the cell list's order
+  OverlapPairs pairs_;        // Verlet pair list, in the cell list's order
   std::vector<OverlapPairs> chunk_pairs_; // threads 1, 2, ...: their layers' pairs
   std::vector<std::size_t> chunk_size_;   // pairs collected by each thread
-  OverlapForces overlap_;             // the force kernel and its scratch
-  std::vector<double> sorted_radius_; // radii in the cell list's slot order
-  std::vector<Vec3> v_, f_;           // FIRE velocities and forces
+  OverlapForces overlap_;                 // the force kernel and its scratch
+  std::vector<double> sorted_radius_;     // radii in the cell list's slot order
+  std::vector<Vec3> v_, f_;               // FIRE velocities and forces
   // FIRE parameters (Bitzek et al. 2006) in dimensionless time (unit stiffness and mass): the
   // stiffest mode of ~12 unit springs per sphere needs dt < 2/sqrt(24) ~ 0.4.
   static constexpr double dt0_ = 0.1, dt_max_ = 0.3, dt_min_ = 0.005, alpha0_ = 0.1;
@@ -310,9 +321,17 @@ private:
     cells.for_each_neighbour_cell(
         [&](int i, const Vec3& xi, int begin, int end)
         {
-          if (out.i.size() < np + std::size_t(end - begin))
+          // why: 8 spare slots, which the vector path's full-width stores may write
+          if (out.i.size() < np + std::size_t(end - begin) + 8)
             out.resize(2 * (np + std::size_t(end - begin)) + 64);
           const double Ri = R_[i];
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+          if (vector_path_)
+          {
+            np = collect_row(i, xi, Ri, begin, end, slot_particle, slot_centre, h2, out, np);
+            return;
+          }
+#endif
           for (int k2 = begin; k2 < end; ++k2)
           {
             const int j = slot_particle[k2];
@@ -329,7 +348,59 @@ private:
     return np;
   }
 
-  void clamp(std::size_t i) { clamp(x_[i], v_[i], s_ * R_[i]); }
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  /// collect_pairs' filter on the slots [begin, end) of a row, eight candidates at a time: the
+  /// same tests on the same correctly rounded values (this file is built without fused
+  /// multiply-adds), the pairs that pass packed in slot order: the same list as the scalar loop.
+  std::size_t collect_row(int i, const Vec3& xi, double Ri, int begin, int end,
+                          const int* slot_particle, const Vec3* slot_centre, double h2,
+                          OverlapPairs& out, std::size_t np) const
+  {
+    const double* centres = slot_centre[0].data();
+    const __m512d vxi = _mm512_set1_pd(xi[0]), vyi = _mm512_set1_pd(xi[1]),
+                  vzi = _mm512_set1_pd(xi[2]), vRi = _mm512_set1_pd(Ri);
+    const __m512d vh2 = _mm512_set1_pd(h2), vs = _mm512_set1_pd(s_), vskin = _mm512_set1_pd(skin_);
+    const __m256i vi = _mm256_set1_epi32(i);
+    for (int k2 = begin; k2 < end; k2 += 8)
+    {
+      const int live_count = std::min(8, end - k2);
+      const __mmask8 live = __mmask8((1u << live_count) - 1);
+      std::int32_t slot[8];
+      for (int q = 0; q < 8; ++q) // lanes past the row repeat its last slot (masked off below)
+        slot[q] = k2 + std::min(q, live_count - 1);
+      alignas(64) double c[4][8];
+      gather_rows<8, 3>(centres, slot, c);
+      const __m256i vj = _mm256_maskz_loadu_epi32(live, slot_particle + k2);
+      const __m512d Rj = _mm512_maskz_loadu_pd(live, sorted_radius_.data() + k2);
+      const __m512d dx = _mm512_sub_pd(_mm512_load_pd(c[0]), vxi);
+      const __m512d dy = _mm512_sub_pd(_mm512_load_pd(c[1]), vyi);
+      const __m512d dz = _mm512_sub_pd(_mm512_load_pd(c[2]), vzi);
+      // (dx^2 + dy^2) + dz^2, as Eigen's squaredNorm sums
+      const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                       _mm512_mul_pd(dz, dz));
+      const __m512d radius_sum = _mm512_add_pd(vRi, Rj);
+      const __m512d lim = _mm512_add_pd(_mm512_mul_pd(vs, radius_sum), vskin);
+      // std::min(Ri, Rj) is Rj if Rj < Ri, else Ri
+      const __m512d radius_min =
+          _mm512_mask_blend_pd(_mm512_cmp_pd_mask(Rj, vRi, _CMP_LT_OQ), vRi, Rj);
+      __mmask8 keep = _mm256_mask_cmpgt_epi32_mask(live, vj, vi);
+      keep = _mm512_mask_cmp_pd_mask(keep, d2, vh2, _CMP_LT_OQ);
+      keep = _mm512_mask_cmp_pd_mask(keep, d2, _mm512_mul_pd(lim, lim), _CMP_LT_OQ);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.i.data() + np), vi);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.j.data() + np),
+                          _mm256_maskz_compress_epi32(keep, vj));
+      _mm512_storeu_pd(out.radius_sum.data() + np, _mm512_maskz_compress_pd(keep, radius_sum));
+      _mm512_storeu_pd(out.radius_min.data() + np, _mm512_maskz_compress_pd(keep, radius_min));
+      np += std::size_t(__builtin_popcount(keep));
+    }
+    return np;
+  }
+#endif
+
+  void clamp(std::size_t i)
+  {
+    clamp(x_[i], v_[i], s_ * R_[i]);
+  }
 
   /// Puts a sphere of radius a back inside the walls; the wall takes its outward velocity.
   void clamp(Vec3& x, Vec3& v, double a) const
