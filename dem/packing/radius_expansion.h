@@ -141,24 +141,40 @@ public:
     // are those of separate passes)
     const bool track = xb_.size() == n;
     const Vec3* const xb = xb_.data();
-    const long nl = long(n);
+    // why: the spheres past the vector blocks (all of them without AVX-512) one at a time
+    std::size_t n_vector = 0;
+#if defined(__AVX512F__)
+    if (vector_path_)
+      n_vector = n - n % 8;
+#endif
+    const long nl = long(n), first_scalar = long(n_vector);
+    [[maybe_unused]] const long blocks = long(n_vector / 8);
     double d2 = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n > parallel_min_)             \
-    reduction(max                                                                                  \
-              : d2)
-    for (long i = 0; i < nl; ++i)
+    // clang-format off
+#pragma omp parallel num_threads(threads_) if (n > parallel_min_) reduction(max : d2)
+    // clang-format on
     {
-      if (P > 0)
-        v[i] = mix * v[i] + c * f[i];
-      else
-        v[i] = Vec3::Zero();
-      v[i] += dt * f[i];
-      x[i] += dt * v[i];
-      clamp(x[i], v[i], s * R_[i]);
-      if (s_next != s)
-        clamp(x[i], v[i], s_next * R_[i]);
-      if (track)
-        d2 = std::max(d2, (x[i] - xb[i]).squaredNorm());
+#if defined(__AVX512F__)
+#pragma omp for schedule(static) nowait
+      for (long block = 0; block < blocks; ++block)
+        d2 = std::max(
+            d2, fire_update_block(std::size_t(block) * 8, P > 0, mix, c, dt, s, s_next, track));
+#endif
+#pragma omp for schedule(static)
+      for (long i = first_scalar; i < nl; ++i)
+      {
+        if (P > 0)
+          v[i] = mix * v[i] + c * f[i];
+        else
+          v[i] = Vec3::Zero();
+        v[i] += dt * f[i];
+        x[i] += dt * v[i];
+        clamp(x[i], v[i], s * R_[i]);
+        if (s_next != s)
+          clamp(x[i], v[i], s_next * R_[i]);
+        if (track)
+          d2 = std::max(d2, (x[i] - xb[i]).squaredNorm());
+      }
     }
     displacement2_ = track ? d2 : -1;
   }
@@ -394,6 +410,77 @@ private:
       np += std::size_t(__builtin_popcount(keep));
     }
     return np;
+  }
+#endif
+
+#if defined(__AVX512F__)
+  /// fire_step's update of the spheres i0 .. i0 + 7, their x, v and f read as three vectors of
+  /// eight doubles each (x0 y0 z0 x1 ...): every component's arithmetic is the scalar loop's, in
+  /// the same order (this file is built without fused multiply-adds), the walls by masks.
+  /// Returns the largest |x - x_b|^2 of the eight (0 unless track).
+  double fire_update_block(std::size_t i0, bool mixing, double mix, double c, double dt, double s,
+                           double s_next, bool track)
+  {
+    double* const x = x_[i0].data();
+    double* const v = v_[i0].data();
+    const double* const f = f_[i0].data();
+    // lane k of vector r holds component (8 r + k) % 3 of sphere i0 + (8 r + k) / 3
+    const __m512i sphere[3] = {_mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0),
+                               _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2),
+                               _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5)};
+    const __m512i axis[3] = {_mm512_set_epi64(1, 0, 2, 1, 0, 2, 1, 0),
+                             _mm512_set_epi64(0, 2, 1, 0, 2, 1, 0, 2),
+                             _mm512_set_epi64(2, 1, 0, 2, 1, 0, 2, 1)};
+    const __m512d box = _mm512_set_pd(0, 0, 0, 0, 0, L_[2], L_[1], L_[0]);
+    const __m512d radii = _mm512_loadu_pd(R_.data() + i0), zero = _mm512_setzero_pd();
+    const __m512d vmix = _mm512_set1_pd(mix), vc = _mm512_set1_pd(c), vdt = _mm512_set1_pd(dt);
+    // the walls' projection (clamp): below a, x = a and v = max(v, 0); else above L - a,
+    // x = L - a and v = min(v, 0) (max_pd(0, v) and min_pd(0, v) return v for v = +-0 and NaN,
+    // as std::max(v, 0.0) and std::min(v, 0.0) do)
+    auto clamp_lanes = [&](__m512d& xr, __m512d& vr, __m512d a, __m512d L)
+    {
+      const __mmask8 below = _mm512_cmp_pd_mask(xr, a, _CMP_LT_OQ);
+      const __m512d upper = _mm512_sub_pd(L, a);
+      const __mmask8 above = _mm512_mask_cmp_pd_mask(__mmask8(~below), xr, upper, _CMP_GT_OQ);
+      xr = _mm512_mask_blend_pd(below, xr, a);
+      vr = _mm512_mask_blend_pd(below, vr, _mm512_max_pd(zero, vr));
+      xr = _mm512_mask_blend_pd(above, xr, upper);
+      vr = _mm512_mask_blend_pd(above, vr, _mm512_min_pd(zero, vr));
+    };
+    __m512d sq[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      const __m512d fr = _mm512_loadu_pd(f + 8 * r);
+      __m512d vr = mixing ? _mm512_add_pd(_mm512_mul_pd(vmix, _mm512_loadu_pd(v + 8 * r)),
+                                          _mm512_mul_pd(vc, fr))
+                          : zero;
+      vr = _mm512_add_pd(vr, _mm512_mul_pd(vdt, fr));
+      __m512d xr = _mm512_add_pd(_mm512_loadu_pd(x + 8 * r), _mm512_mul_pd(vdt, vr));
+      const __m512d R = _mm512_permutexvar_pd(sphere[r], radii);
+      const __m512d L = _mm512_permutexvar_pd(axis[r], box);
+      clamp_lanes(xr, vr, _mm512_mul_pd(_mm512_set1_pd(s), R), L);
+      if (s_next != s)
+        clamp_lanes(xr, vr, _mm512_mul_pd(_mm512_set1_pd(s_next), R), L);
+      _mm512_storeu_pd(v + 8 * r, vr);
+      _mm512_storeu_pd(x + 8 * r, xr);
+      if (track)
+      {
+        const __m512d d = _mm512_sub_pd(xr, _mm512_loadu_pd(xb_[i0].data() + 8 * r));
+        sq[r] = _mm512_mul_pd(d, d);
+      }
+    }
+    if (!track)
+      return 0;
+    // the squares by axis (lanes = spheres), then (dx^2 + dy^2) + dz^2 as squaredNorm sums
+    auto by_axis = [&](__m512i from01, __m512i from2)
+    { return _mm512_permutex2var_pd(_mm512_permutex2var_pd(sq[0], from01, sq[1]), from2, sq[2]); };
+    const __m512d sx = by_axis(_mm512_set_epi64(0, 0, 15, 12, 9, 6, 3, 0),
+                               _mm512_set_epi64(13, 10, 5, 4, 3, 2, 1, 0));
+    const __m512d sy = by_axis(_mm512_set_epi64(0, 0, 0, 13, 10, 7, 4, 1),
+                               _mm512_set_epi64(14, 11, 8, 4, 3, 2, 1, 0));
+    const __m512d sz = by_axis(_mm512_set_epi64(0, 0, 0, 14, 11, 8, 5, 2),
+                               _mm512_set_epi64(15, 12, 9, 4, 3, 2, 1, 0));
+    return _mm512_reduce_max_pd(_mm512_add_pd(_mm512_add_pd(sx, sy), sz));
   }
 #endif
 
