@@ -228,22 +228,27 @@ private:
     double *const cx = c, *const cy = cx + stride, *const cz = cy + stride;
     double *const cd2 = cz + stride, *const csum = cd2 + stride, *const cmin = csum + stride;
     int *const ci = cij, *const cj = cij + pair_stride;
+    // why: the stores below may alias the vectors' own pointers for all the compiler knows, so
+    // it would reload them every step
+    const int *const pi = pairs.i.data(), *const pj = pairs.j.data();
+    const double* const radius_sum = pairs.radius_sum.data();
+    const double* const radius_min = pairs.radius_min.data();
     std::size_t nc = 0;
     for (std::size_t k = b; k < e; k += 8)
     {
-      const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.i[k]));
-      const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&pairs.j[k]));
+      const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pi + k));
+      const __m256i vj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pj + k));
       // x_i and x_j of the eight pairs as rows x, y, z (and a spare)
       alignas(64) double xi[4][8], xj[4][8];
-      gather_rows<8, 3>(X, &pairs.i[k], xi);
-      gather_rows<8, 3>(X, &pairs.j[k], xj);
+      gather_rows<8, 3>(X, pi + k, xi);
+      gather_rows<8, 3>(X, pj + k, xj);
       const __m512d dx = _mm512_sub_pd(_mm512_load_pd(xj[0]), _mm512_load_pd(xi[0]));
       const __m512d dy = _mm512_sub_pd(_mm512_load_pd(xj[1]), _mm512_load_pd(xi[1]));
       const __m512d dz = _mm512_sub_pd(_mm512_load_pd(xj[2]), _mm512_load_pd(xi[2]));
       // (dx^2 + dy^2) + dz^2, as Eigen's squaredNorm sums
       const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
                                        _mm512_mul_pd(dz, dz));
-      const __m512d sum = _mm512_mul_pd(vs, _mm512_loadu_pd(&pairs.radius_sum[k]));
+      const __m512d sum = _mm512_mul_pd(vs, _mm512_loadu_pd(radius_sum + k));
       // contact unless d2 >= sum^2 (the scalar test, negated exactly)
       const __mmask8 touching = _mm512_cmp_pd_mask(d2, _mm512_mul_pd(sum, sum), _CMP_NGE_UQ);
       if (!touching)
@@ -254,7 +259,7 @@ private:
       _mm512_storeu_pd(cd2 + nc, _mm512_maskz_compress_pd(touching, d2));
       _mm512_storeu_pd(csum + nc, _mm512_maskz_compress_pd(touching, sum));
       _mm512_storeu_pd(cmin + nc,
-                       _mm512_maskz_compress_pd(touching, _mm512_loadu_pd(&pairs.radius_min[k])));
+                       _mm512_maskz_compress_pd(touching, _mm512_loadu_pd(radius_min + k)));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(ci + nc),
                           _mm256_maskz_compress_epi32(touching, vi));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(cj + nc),
