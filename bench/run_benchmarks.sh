@@ -7,7 +7,9 @@
 #  - the same lattice with r = 0.74 mm (1,059,194 spheres, 6.25 M bonds): a few steps, for
 #    particle-steps per second and bytes per particle at a million particles;
 #  - YADE (bench/peers/yade_hcp_bench.py, bonds_only) on the 26,004-sphere lattice, 1 and 2
-#    threads, right after (skipped when yade is not installed).
+#    threads, right after (skipped when yade is not installed). For the ratio to YADE, whose
+#    single runs swing with the host independently of ours, bench/yade_alternating.py
+#    alternates the two round by round (about 5 minutes; bench/results/yade_alternating_*.json).
 # Run on an otherwise idle machine: the figures are wall-clock throughput (the JSON also holds
 # rates per CPU-second). BUILD=dir picks the build (default build/).
 # --damage: also the damage benchmark (bench/damage_bench.py: compression to failure of 23,746
