@@ -1,5 +1,6 @@
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/bond_partition.h"
+#include "dem/solvers/orientation_update.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -155,6 +156,7 @@ template <bool record> void ExplicitSolver::integrate()
   const std::size_t n = p_.size();
   double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0, unbalanced = 0;
   long n_free = 0;
+  const std::size_t n_blocked = n - n % 8; // particles whose orientation turns in blocks of 8
   auto& x = p_.position;
   auto& v = p_.velocity;
   auto& w = p_.angular_velocity;
@@ -241,32 +243,10 @@ template <bool record> void ExplicitSolver::integrate()
     v[i] = v1;
     w[i] = w1;
     x[i] += dt * v1; // eq. 41
-    // q <- exp(dt w / 2) q, with a series for small angles (eq. 45 in quaternion form)
-    const Vec3 h = 0.5 * dt * w1;
-    const double a2 = h.squaredNorm();
-    double c, s;
-    if (a2 < 1e-6)
-    {
-      c = 1.0 - a2 / 2.0 + a2 * a2 / 24.0;
-      s = 1.0 - a2 / 6.0 + a2 * a2 / 120.0;
-    }
-    else
-    {
-      const double a = std::sqrt(a2);
-      c = std::cos(a);
-      s = std::sin(a) / a;
-    }
-    Quat qn = Quat(c, s * h.x(), s * h.y(), s * h.z()) * q[i];
-    // A unit quaternion times a unit one: |qn|^2 = 1 + eps, eps at roundoff. One Newton step for
-    // 1 / sqrt(|qn|^2) from 1, (3 - |qn|^2) / 2, normalises it to roundoff without the square
-    // root and division of normalized(), whose latency was most of this loop's time (an
-    // orientation set by hand far from unit length takes the exact path).
-    const double n2 = qn.squaredNorm();
-    if (std::abs(n2 - 1.0) < 1e-8)
-      qn.coeffs() *= 0.5 * (3.0 - n2);
-    else
-      qn.normalize();
-    q[i] = qn;
+    // q <- exp(dt w / 2) q (eq. 45, orientation_update.h): the particles past the last full
+    // block of eight here, the blocks after this loop
+    if (std::size_t(i) >= n_blocked)
+      update_orientation(q[i].coeffs().data(), w1.data(), dt);
     if constexpr (record)
     {
       // eq. 49, time-centred at t_n as 1/2 m v^{n-1/2}.v^{n+1/2}: the form the leapfrog
@@ -274,6 +254,14 @@ template <bool record> void ExplicitSolver::integrate()
       kinetic += 0.5 * m * v0.dot(v1) + 0.5 * I * w0.dot(w1);
       vmax2 = std::max(vmax2, v1.squaredNorm());
     }
+  }
+  {
+    double* const qd = q.data()->coeffs().data();
+    const double* const wd = w.data()->data();
+    const long blocks = long(n_blocked / 8);
+#pragma omp parallel for num_threads(settings_.threads) schedule(static)
+    for (long b = 0; b < blocks; ++b)
+      update_orientations8(qd + 32 * b, wd + 24 * b, dt);
   }
   // Damping work (particle damping and dashpots): the running sum of d^n . (v^{n-1/2} +
   // v^{n+1/2})/2 dt runs half a
