@@ -256,8 +256,10 @@ template <bool record> void ExplicitSolver::integrate()
     }
   }
   {
-    double* const qd = q.data()->coeffs().data();
-    const double* const wd = w.data()->data();
+    // why: the raw doubles without dereferencing data(), which is null for no particles
+    static_assert(sizeof(Quat) == 4 * sizeof(double) && sizeof(Vec3) == 3 * sizeof(double));
+    double* const qd = reinterpret_cast<double*>(q.data());
+    const double* const wd = reinterpret_cast<const double*>(w.data());
     const long blocks = long(n_blocked / 8);
 #pragma omp parallel for num_threads(settings_.threads) schedule(static)
     for (long b = 0; b < blocks; ++b)
