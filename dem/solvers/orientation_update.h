@@ -38,11 +38,9 @@ namespace dembridge::dem
   s = 1.0 - a2 / 6.0 + a2 * a2 / 120.0;
 }
 
-/// One particle: q (4 doubles) turned by the angular velocity w (3 doubles) over dt.
-inline void update_orientation(double* q, const double* w, double dt)
+/// q turned by h = dt w / 2, a2 = |h|^2: the series below a2 = 1e-6, cos and sin above.
+inline void turn_quaternion(double* q, double hx, double hy, double hz, double a2)
 {
-  const double hx = 0.5 * dt * w[0], hy = 0.5 * dt * w[1], hz = 0.5 * dt * w[2];
-  const double a2 = hx * hx + hy * hy + hz * hz;
   double c, s;
   if (a2 < 1e-6)
     small_angle_factors(a2, c, s);
@@ -53,6 +51,13 @@ inline void update_orientation(double* q, const double* w, double dt)
     s = std::sin(a) / a;
   }
   rotate_quaternion(q, hx, hy, hz, c, s);
+}
+
+/// One particle: q (4 doubles) turned by the angular velocity w (3 doubles) over dt.
+inline void update_orientation(double* q, const double* w, double dt)
+{
+  const double hx = 0.5 * dt * w[0], hy = 0.5 * dt * w[1], hz = 0.5 * dt * w[2];
+  turn_quaternion(q, hx, hy, hz, hx * hx + hy * hy + hz * hz);
 }
 
 /// Eight consecutive particles (q: 32 doubles, w: 24): in SIMD lanes if all eight angles are
@@ -70,7 +75,7 @@ inline void update_orientations8(double* q, const double* w, double dt)
   if (!small)
   {
     for (int j = 0; j < 8; ++j)
-      update_orientation(q + 4 * j, w + 3 * j, dt);
+      turn_quaternion(q + 4 * j, hx[j], hy[j], hz[j], a2[j]);
     return;
   }
 #pragma GCC ivdep
