@@ -18,6 +18,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -37,14 +38,6 @@ if shutil.which("yade") is None:
              "(apt-get install --no-install-recommends yade)")
 
 
-def last_json(text, what):
-    """The last JSON object a tool printed (YADE: one line; dembridge-bench: the whole output)."""
-    start = text.find("{") if what == "dembridge" else text.rfind("\n{") + 1
-    if start < 0:
-        sys.exit(f"yade_alternating.py: no JSON in the output of {what}")
-    return json.loads(text[start:])
-
-
 def yade_run(threads):
     out = subprocess.run(["yade", f"-j{threads}", "-n", "-x",
                           os.path.join(here, "bench", "peers", "yade_hcp_bench.py"), "--mode",
@@ -58,9 +51,12 @@ def yade_run(threads):
 
 
 def dembridge_run(threads):
-    out = subprocess.run([bench, "--packing", "hcp", "--threads", str(threads), "--steps", "100",
-                          "--rounds", "5"], capture_output=True, text=True, check=True).stdout
-    r = last_json(out, "dembridge")
+    with tempfile.TemporaryDirectory() as work:
+        path = os.path.join(work, "dembridge.json")
+        subprocess.run([bench, "--packing", "hcp", "--threads", str(threads), "--steps", "100",
+                        "--rounds", "5", "--json", path], capture_output=True, check=True)
+        with open(path) as f:
+            r = json.load(f)
     run = r["runs"][0]
     return (run["full"]["bond_updates_per_second"], run["plain"]["bond_updates_per_second"],
             r["n_bonds"])
