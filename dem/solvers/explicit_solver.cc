@@ -1,4 +1,5 @@
 #include "dem/solvers/explicit_solver.h"
+#include "dem/bonds/bond_block.h"
 #include "dem/solvers/bond_partition.h"
 #include "dem/solvers/orientation_update.h"
 #include <algorithm>
@@ -64,10 +65,9 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   }
   for (std::size_t k = 0; k < b_.size(); ++k)
     dashpots_ = dashpots_ || b_.damping_force[k] > 0 || b_.damping_moment[k] > 0;
-  if (dashpots_)
-  {
-    dashpot_.assign(p_.size(), DashpotResultant{});
-  }
+  const std::size_t record_size =
+      dashpots_ ? particle_record_size<true> : particle_record_size<false>;
+  particle_sums_.assign(record_size * p_.size(), 0.0);
   // energy_.initial is set by the first step, from the leapfrog state at t_0 (integrate())
 }
 
@@ -83,7 +83,7 @@ void ExplicitSolver::partition_bonds()
 std::size_t ExplicitSolver::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  std::size_t n = bytes(dashpot_) + bytes(constrained_) + bytes(prescribed_v_) +
+  std::size_t n = bytes(particle_sums_) + bytes(constrained_) + bytes(prescribed_v_) +
                   bytes(prescribed_w_) + bytes(constrained_v_) + bytes(constrained_w_) +
                   bytes(constrained_reaction_) + bytes(cracks_);
   for (const auto& buffer : crack_buffers_)
@@ -233,12 +233,12 @@ template <bool record> void ExplicitSolver::integrate()
     if (dashpots_)
     {
       // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
-      const Vec3& fd = dashpot_[i].force;
-      const Vec3& md = dashpot_[i].torque;
+      double* const sum = &particle_sums_[particle_record_size<true> * i];
+      const Vec3 fd(sum + 6), md(sum + 9);
       dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
       if constexpr (record)
         lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
-      dashpot_[i] = DashpotResultant{};
+      std::fill(sum + 6, sum + 12, 0.0);
     }
     v[i] = v1;
     w[i] = w1;
@@ -303,16 +303,11 @@ template <bool record> void ExplicitSolver::integrate()
 void ExplicitSolver::step(bool record)
 {
   record = record || steps_ == 0; // the first step fixes the initial energy
-  // Forces are zeroed here rather than at the end of integrate() because the previous step's
-  // values (support reactions) are read between steps; the dashpot arrays are zeroed in
+  // The bond loop sets the forces (the previous step's values, support reactions, are read
+  // between steps); its per-particle sums are zero here, the dashpot parts zeroed in
   // integrate() right after their last use.
-  const long n = long(p_.size());
-#pragma omp parallel for num_threads(settings_.threads) schedule(static)
-  for (long i = 0; i < n; ++i)
-  {
-    p_.force[i].setZero();
-    p_.torque[i].setZero();
-  }
+  if (sums_hold_evaluation_)
+    std::fill(particle_sums_.begin(), particle_sums_.end(), 0.0), sums_hold_evaluation_ = false;
   record ? dispatch_bond_forces<true>() : dispatch_bond_forces<false>();
   apply_loads();
   for (auto* c : contributions_)

@@ -136,13 +136,13 @@ private:
   EnergyBalance energy_;
   double damping_work_ = 0; ///< running damping work, half a step ahead (see integrate)
   bool dashpots_ = false;   ///< any bond with a dashpot
-  /// The bond dashpots' resultants on a particle, force and torque side by side (why: the
-  /// scatter of a bond then touches one line per particle instead of two arrays' lines)
-  struct DashpotResultant
-  {
-    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-  };
-  std::vector<DashpotResultant> dashpot_; ///< per particle
+  /// Per particle, the sums of its bonds' records (bond_block.h: force, moment, and with
+  /// dashpots their dashpot parts, whose exact work integrate books): filled by the bond loop,
+  /// moved to the particles' forces after it, the dashpot parts zeroed by integrate (why one
+  /// record: a bond end adds whole 256-bit vectors to one place instead of scalars to four
+  /// arrays)
+  std::vector<double, Eigen::aligned_allocator<double>> particle_sums_;
+  bool sums_hold_evaluation_ = false; ///< evaluate_bond_forces left dashpot parts behind
   double max_speed_ = 0;
   double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
   double unbalanced_ratio_ = 0;

@@ -19,9 +19,8 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   [[maybe_unused]] const bool records = b_.records_forces();
   [[maybe_unused]] const Vec3* v = p_.velocity.data();
   [[maybe_unused]] const Vec3* w = p_.angular_velocity.data();
-  Vec3* F = p_.force.data();
-  Vec3* M = p_.torque.data();
-  DashpotResultant* D = dashpot_.data();
+  constexpr int S = particle_record_size<dashpots>;
+  double* sums = particle_sums_.data(); // per particle, the records' layout (bond_block.h)
   [[maybe_unused]] const FailureLaw& law = b_.failure;
   [[maybe_unused]] const double dt = settings_.time_step;
   const BondLawArrays arrays(p_, b_);
@@ -32,28 +31,17 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   // contributions still arrive in bond order, so the sums are bitwise those of adding each bond
   // in memory, for any bond order (a run ends when the lower particle changes).
   int run = -1; // the lower particle of the current run, -1: none
-  double run_F[3] = {}, run_M[3] = {}, run_Fd[3] = {}, run_Md[3] = {};
+  ParticleRecord<S> run_sum;
   auto end_run = [&]
   {
-    if (run < 0)
-      return;
-    for (int d = 0; d < 3; ++d)
-    {
-      F[run][d] = run_F[d], M[run][d] = run_M[d];
-      if constexpr (dashpots)
-        D[run].force[d] = run_Fd[d], D[run].torque[d] = run_Md[d];
-    }
+    if (run >= 0)
+      run_sum.store(sums + std::size_t(S) * std::size_t(run));
   };
   auto start_run = [&](int lower)
   {
     end_run();
     run = lower;
-    for (int d = 0; d < 3; ++d)
-    {
-      run_F[d] = F[run][d], run_M[d] = M[run][d];
-      if constexpr (dashpots)
-        run_Fd[d] = D[run].force[d], run_Md[d] = D[run].torque[d];
-    }
+    run_sum.load(sums + std::size_t(S) * std::size_t(run));
   };
   for (std::size_t k0 = begin; k0 < end; k0 += BondBlock::W)
   {
@@ -152,27 +140,19 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
           for (int d = 0; d < 3; ++d)
             f.Fc[d] *= carried, f.Mc[d] *= carried;
       }
-      // the particle resultants (bond_resultants, formed in the block's lanes), times 1 - D:
-      // -F_c and M_a on a, F_c and M_b on b (x - y and x + (-y) are the same double)
-      const bool a_lower = ia < ib;
-      const int lower = a_lower ? ia : ib, upper = a_lower ? ib : ia;
+      // the particle resultants (bond_resultants; with dashpots their dashpot parts, kept
+      // apart for their exact work in integrate), formed in the block's lanes, times 1 - D:
+      // whole records, the lower particle's in registers, the upper's in memory
+      const int lower = std::min(ia, ib), upper = std::max(ia, ib);
       if (lower != run)
         start_run(lower);
-      for (int d = 0; d < 3; ++d)
-      {
-        const double Fc = carried * block.Fc[d][j];
-        const double Ma = carried * block.Ma[d][j], Mb = carried * block.Mb[d][j];
-        run_F[d] += a_lower ? -Fc : Fc, run_M[d] += a_lower ? Ma : Mb;
-        F[upper][d] += a_lower ? Fc : -Fc, M[upper][d] += a_lower ? Mb : Ma;
-      }
-      if constexpr (dashpots) // dashpot resultants kept apart for their exact work (integrate)
-        for (int d = 0; d < 3; ++d)
-        {
-          const double Fdc = carried * block.Fd[d][j];
-          const double Mda = carried * block.Mda[d][j], Mdb = carried * block.Mdb[d][j];
-          run_Fd[d] += a_lower ? -Fdc : Fdc, run_Md[d] += a_lower ? Mda : Mdb;
-          D[upper].force[d] += a_lower ? Fdc : -Fdc, D[upper].torque[d] += a_lower ? Mdb : Mda;
-        }
+      constexpr bool scaled = failure != FailureMode::none;
+      run_sum.template add<scaled>(block.lower[j], carried);
+      ParticleRecord<S> upper_sum;
+      double* const upper_at = sums + std::size_t(S) * std::size_t(upper);
+      upper_sum.load(upper_at);
+      upper_sum.template add<scaled>(block.upper[j], carried);
+      upper_sum.store(upper_at);
       if constexpr (record)
       {
         if constexpr (failure == FailureMode::none)
@@ -213,6 +193,20 @@ void ExplicitSolver::compute_bond_forces()
     bond_range<record, dashpots, failure>(phases_[3][r].first, phases_[3][r].second, strain,
                                           fracture, intact_force, intact,
                                           crack_buffers_[phase_buffer_[3] + r]);
+  // the particles' bond resultants from the sums, which are left zero there for the next step
+  // (the dashpot parts stay for integrate, which zeroes them after their last use)
+  constexpr int S = particle_record_size<dashpots>;
+  double* sums = particle_sums_.data();
+  const long n = long(p_.size());
+#pragma omp parallel for num_threads(settings_.threads) schedule(static)
+  for (long i = 0; i < n; ++i)
+  {
+    double* r = sums + S * i;
+    p_.force[std::size_t(i)] = Vec3(r[0], r[1], r[2]);
+    p_.torque[std::size_t(i)] = Vec3(r[3], r[4], r[5]);
+    for (int d = 0; d < 6; ++d)
+      r[d] = 0.0;
+  }
   if constexpr (record)
   {
     energy_.strain = strain;
@@ -273,29 +267,27 @@ void ExplicitSolver::drain_crack_events()
 std::vector<Vec3> ExplicitSolver::dashpot_forces() const
 {
   std::vector<Vec3> out(p_.size(), Vec3::Zero());
-  for (std::size_t i = 0; i < dashpot_.size(); ++i)
-    out[i] = dashpot_[i].force;
+  if (dashpots_)
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = Vec3(&particle_sums_[12 * i + 6]);
   return out;
 }
 
 std::vector<Vec3> ExplicitSolver::dashpot_torques() const
 {
   std::vector<Vec3> out(p_.size(), Vec3::Zero());
-  for (std::size_t i = 0; i < dashpot_.size(); ++i)
-    out[i] = dashpot_[i].torque;
+  if (dashpots_)
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = Vec3(&particle_sums_[12 * i + 9]);
   return out;
 }
 
 void ExplicitSolver::evaluate_bond_forces()
 {
-  for (std::size_t i = 0; i < p_.size(); ++i)
-  {
-    p_.force[i].setZero(), p_.torque[i].setZero();
-    if (dashpots_)
-      dashpot_[i] = DashpotResultant{};
-  }
+  std::fill(particle_sums_.begin(), particle_sums_.end(), 0.0);
   dashpots_ ? compute_bond_forces<true, true, FailureMode::none>()
             : compute_bond_forces<true, false, FailureMode::none>();
+  sums_hold_evaluation_ = dashpots_; // a step zeroes the dashpot parts first
 }
 
 template void ExplicitSolver::dispatch_bond_forces<true>();

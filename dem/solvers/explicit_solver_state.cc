@@ -3,8 +3,8 @@
 // ones is named here: the running energy sums (damping work half a step ahead), the support
 // reactions of the last step (the trapezoidal work of prescribed motion), the crack log and
 // the per-mode counts, and the last record's figures (max speed, unbalanced-force ratio).
-// Scratch that every step overwrites before reading (dashpot resultants, supports' velocities,
-// failure buffers) is not stored.
+// Scratch that every step overwrites before reading or leaves zero (the bond loop's
+// per-particle sums, supports' velocities, failure buffers) is not stored.
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/run_state.h"
 #include <cmath>

@@ -4,11 +4,13 @@
 // and strain energy to 1e-12 relative (only the order of floating-point sums and the compiler's
 // fused multiply-adds differ), on an HCP lattice and a random packing, with and without
 // dashpots, on 1 and 2 threads.
+#include "dem/bonds/bond_block.h"
 #include "dem/bonds/bond_kernel.h"
 #include "dem/bonds/bonding.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
+#include <cmath>
 #include <gtest/gtest.h>
 #include <map>
 #include <random>
@@ -180,4 +182,59 @@ INSTANTIATE_TEST_SUITE_P(LatticeAndRandom, BondLoop,
                                   (c.damping > 0 ? "_dashpots" : "_no_dashpots") + "_threads" +
                                   std::to_string(c.threads);
                          });
+/// The records a block hands to the scatter (bond_block.h), formed in lanes by masks and
+/// in-register transposes, against the one-bond-at-a-time version: bitwise the same for every
+/// lane and record slot, for both orders of a bond's ends, with and without dashpots (a
+/// swapped lane, slot or choice of end fails it).
+template <bool dashpots> void check_particle_records()
+{
+  constexpr int W = BondBlock::W, S = particle_record_size<dashpots>;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  BondBlock lanes;
+  for (auto* rows : {lanes.Fc, lanes.Ma, lanes.Mb, lanes.Fd, lanes.Mda, lanes.Mdb})
+    for (int d = 0; d < 3; ++d)
+      for (int j = 0; j < W; ++j)
+        rows[d][j] = u(rng);
+  lanes.Fc[1][2] = 0.0; // a signed zero must come out negated on one end
+  std::int32_t ia[W], ib[W];
+  for (int j = 0; j < W; ++j)
+    ia[j] = 10 * j + (j % 3 == 0 ? 7 : 0), ib[j] = 10 * j + 3; // a < b in some lanes only
+  BondBlock scalar = lanes;
+  particle_records<dashpots, W>(ia, ib, lanes);
+  particle_records_scalar<dashpots, W>(ia, ib, scalar);
+  for (int j = 0; j < W; ++j)
+    for (int d = 0; d < S; ++d)
+    {
+      EXPECT_EQ(std::signbit(lanes.lower[j][d]), std::signbit(scalar.lower[j][d])) << j << d;
+      EXPECT_EQ(lanes.lower[j][d], scalar.lower[j][d]) << "lane " << j << " slot " << d;
+      EXPECT_EQ(lanes.upper[j][d], scalar.upper[j][d]) << "lane " << j << " slot " << d;
+    }
+  // and the scalar version is what the law's resultants say (bond_kernel.h): -F_c and M_a on
+  // a, F_c and M_b on b
+  for (int j = 0; j < W; ++j)
+  {
+    const bool a_lower = ia[j] < ib[j];
+    const double* on_a = a_lower ? scalar.lower[j] : scalar.upper[j];
+    const double* on_b = a_lower ? scalar.upper[j] : scalar.lower[j];
+    for (int d = 0; d < 3; ++d)
+    {
+      EXPECT_EQ(on_a[d], -lanes.Fc[d][j]);
+      EXPECT_EQ(on_b[d], lanes.Fc[d][j]);
+      EXPECT_EQ(on_a[3 + d], lanes.Ma[d][j]);
+      EXPECT_EQ(on_b[3 + d], lanes.Mb[d][j]);
+      if (dashpots)
+      {
+        EXPECT_EQ(on_a[6 + d], -lanes.Fd[d][j]);
+        EXPECT_EQ(on_b[9 + d], lanes.Mdb[d][j]);
+      }
+    }
+  }
+}
+
+TEST(BondBlockRecords, LanesEqualOneBondAtATime)
+{
+  check_particle_records<true>();
+  check_particle_records<false>();
+}
 } // namespace
