@@ -24,6 +24,7 @@
 //   F_a -= F_c,  M_a += -M_c + r_ac x (-F_c),   r_ac = s L e
 //   F_b += F_c,  M_b +=  M_c + r_bc x F_c,      r_bc = -(1-s) L e
 // which conserve linear and angular momentum exactly.
+#include "dem/core/lanes.h"
 #include "dem/core/types.h"
 #include <cmath>
 
@@ -37,64 +38,71 @@ struct BondConstants
   double ct, cr;
 };
 
-/// Contact force and couple on particle b, their dashpot parts, and the lever arms
-/// (r_ac = ra e, r_bc = rb e). The particle resultants follow from these (see bond_resultants).
-struct BondForces
+/// The per-bond constants as the law reads them, for one bond (T = double) or a block's lanes.
+template <class T> struct LawConstants
 {
-  double Fc[3], Mc[3]; ///< elastic + dashpot
-  double Fd[3], Md[3]; ///< dashpot parts (zero without dashpots)
-  double e[3];         ///< current bond axis a -> b
-  double ra, rb;       ///< signed distances of the contact point from a and b along e
-  double strain_energy;
+  T L0, e0[3], kn, ks, ktor, kben, s, ct, cr;
 };
 
-/// The unified law in scalar form: this is the hot loop body, written without vector
-/// temporaries (about twice as fast as the same expressions in Eigen 3-vectors). Quaternions are
-/// read in Eigen's storage order (x, y, z, w). Without dashpots the velocities are not read.
-template <bool dashpots>
-[[gnu::always_inline]] inline void bond_law(const double* xa, const double* xb, const double* qa,
-                                            const double* qb, const double* va, const double* vb,
-                                            const double* wa, const double* wb,
-                                            const BondConstants& c, BondForces& out)
+/// Contact force and couple on particle b, their dashpot parts, and the lever arms
+/// (r_ac = ra e, r_bc = rb e). The particle resultants follow from these (see bond_resultants).
+template <class T> struct BondForcesOf
 {
-  const double dx = xb[0] - xa[0], dy = xb[1] - xa[1], dz = xb[2] - xa[2];
-  const double L = std::sqrt(dx * dx + dy * dy + dz * dz), iL = 1.0 / L;
-  const double ex = dx * iL, ey = dy * iL, ez = dz * iL;
-  const double e0x = c.e0[0], e0y = c.e0[1], e0z = c.e0[2];
+  T Fc[3], Mc[3]; ///< elastic + dashpot
+  T Fd[3], Md[3]; ///< dashpot parts (zero without dashpots)
+  T e[3];         ///< current bond axis a -> b
+  T ra, rb;       ///< signed distances of the contact point from a and b along e
+  T strain_energy;
+};
+using BondForces = BondForcesOf<double>;
+
+/// The unified law, for one bond (T = double) or for the lanes of a block (T = Lanes): the same
+/// source for both, so each lane computes what the scalar kernel computes for its bond (up to
+/// the compiler's fused multiply-adds). Written without vector temporaries (about twice as fast
+/// as the same expressions in Eigen 3-vectors). Quaternions are read in Eigen's storage order
+/// (x, y, z, w). Without dashpots the velocities are not read.
+template <bool dashpots, class T>
+[[gnu::always_inline]] inline void bond_law_of(const T* xa, const T* xb, const T* qa, const T* qb,
+                                               const T* va, const T* vb, const T* wa, const T* wb,
+                                               const LawConstants<T>& c, BondForcesOf<T>& out)
+{
+  const T dx = xb[0] - xa[0], dy = xb[1] - xa[1], dz = xb[2] - xa[2];
+  const T L = lane_sqrt(dx * dx + dy * dy + dz * dz), iL = 1.0 / L;
+  const T ex = dx * iL, ey = dy * iL, ez = dz * iL;
+  const T e0x = c.e0[0], e0y = c.e0[1], e0z = c.e0[2];
   // t = q e0 (rotate the formation axis with each particle): t = e0 + w u + qv x u, u = 2 qv x e0
-  auto rotate = [&](const double* q, double& tx, double& ty, double& tz)
+  auto rotate = [&](const T* q, T& tx, T& ty, T& tz)
   {
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double ux = 2 * (y * e0z - z * e0y), uy = 2 * (z * e0x - x * e0z),
-                 uz = 2 * (x * e0y - y * e0x);
+    const T x = q[0], y = q[1], z = q[2], w = q[3];
+    const T ux = 2 * (y * e0z - z * e0y), uy = 2 * (z * e0x - x * e0z),
+            uz = 2 * (x * e0y - y * e0x);
     tx = e0x + w * ux + (y * uz - z * uy);
     ty = e0y + w * uy + (z * ux - x * uz);
     tz = e0z + w * uz + (x * uy - y * ux);
   };
-  double tax, tay, taz, tbx, tby, tbz;
+  T tax, tay, taz, tbx, tby, tbz;
   rotate(qa, tax, tay, taz);
   rotate(qb, tbx, tby, tbz);
   // th = 2 (e x t) / (1 + e.t)
-  const double ca = 2.0 / (1.0 + ex * tax + ey * tay + ez * taz);
-  const double cb = 2.0 / (1.0 + ex * tbx + ey * tby + ez * tbz);
-  const double hax = ca * (ey * taz - ez * tay), hay = ca * (ez * tax - ex * taz),
-               haz = ca * (ex * tay - ey * tax);
-  const double hbx = cb * (ey * tbz - ez * tby), hby = cb * (ez * tbx - ex * tbz),
-               hbz = cb * (ex * tby - ey * tbx);
+  const T ca = 2.0 / (1.0 + ex * tax + ey * tay + ez * taz);
+  const T cb = 2.0 / (1.0 + ex * tbx + ey * tby + ez * tbz);
+  const T hax = ca * (ey * taz - ez * tay), hay = ca * (ez * tax - ex * taz),
+          haz = ca * (ex * tay - ey * tax);
+  const T hbx = cb * (ey * tbz - ez * tby), hby = cb * (ez * tbx - ex * tbz),
+          hbz = cb * (ex * tby - ey * tbx);
   // twist: q_r = q_b q_a^*, tw = 2 vec(q_r).e / w(q_r)
-  const double rw = qb[3] * qa[3] + qb[0] * qa[0] + qb[1] * qa[1] + qb[2] * qa[2];
-  const double rx = qa[3] * qb[0] - qb[3] * qa[0] - (qb[1] * qa[2] - qb[2] * qa[1]);
-  const double ry = qa[3] * qb[1] - qb[3] * qa[1] - (qb[2] * qa[0] - qb[0] * qa[2]);
-  const double rz = qa[3] * qb[2] - qb[3] * qa[2] - (qb[0] * qa[1] - qb[1] * qa[0]);
-  const double tw = 2.0 * (rx * ex + ry * ey + rz * ez) / rw;
+  const T rw = qb[3] * qa[3] + qb[0] * qa[0] + qb[1] * qa[1] + qb[2] * qa[2];
+  const T rx = qa[3] * qb[0] - qb[3] * qa[0] - (qb[1] * qa[2] - qb[2] * qa[1]);
+  const T ry = qa[3] * qb[1] - qb[3] * qa[1] - (qb[2] * qa[0] - qb[0] * qa[2]);
+  const T rz = qa[3] * qb[2] - qb[3] * qa[2] - (qb[0] * qa[1] - qb[1] * qa[0]);
+  const T tw = 2.0 * (rx * ex + ry * ey + rz * ez) / rw;
   // delta_n, delta_s = L (s th_a + (1-s) th_b) x e, rotation a - b
-  const double s = c.s, dn = c.L0 - L;
-  const double mx = s * hax + (1 - s) * hbx, my = s * hay + (1 - s) * hby,
-               mz = s * haz + (1 - s) * hbz;
-  const double dsx = L * (my * ez - mz * ey), dsy = L * (mz * ex - mx * ez),
-               dsz = L * (mx * ey - my * ex);
-  const double rotx = hax - hbx, roty = hay - hby, rotz = haz - hbz;
-  const double fn = c.kn * dn, mt = -c.ktor * tw;
+  const T s = c.s, dn = c.L0 - L;
+  const T mx = s * hax + (1 - s) * hbx, my = s * hay + (1 - s) * hby, mz = s * haz + (1 - s) * hbz;
+  const T dsx = L * (my * ez - mz * ey), dsy = L * (mz * ex - mx * ez),
+          dsz = L * (mx * ey - my * ex);
+  const T rotx = hax - hbx, roty = hay - hby, rotz = haz - hbz;
+  const T fn = c.kn * dn, mt = -c.ktor * tw;
   out.Fc[0] = fn * ex + c.ks * dsx;
   out.Fc[1] = fn * ey + c.ks * dsy;
   out.Fc[2] = fn * ez + c.ks * dsz;
@@ -109,14 +117,10 @@ template <bool dashpots>
   if constexpr (dashpots)
   {
     // v_cr = (v_a + w_a x r_ac) - (v_b + w_b x r_bc) (eq. 6), w_cr = w_a - w_b (eq. 7)
-    const double ra = out.ra, rb = out.rb;
-    const double vx =
-        va[0] + ra * (wa[1] * ez - wa[2] * ey) - vb[0] - rb * (wb[1] * ez - wb[2] * ey);
-    const double vy =
-        va[1] + ra * (wa[2] * ex - wa[0] * ez) - vb[1] - rb * (wb[2] * ex - wb[0] * ez);
-    const double vz =
-        va[2] + ra * (wa[0] * ey - wa[1] * ex) - vb[2] - rb * (wb[0] * ey - wb[1] * ex);
-    // written out per component (no loop, no branch): the SIMD block (bond_block.h) runs this
+    const T ra = out.ra, rb = out.rb;
+    const T vx = va[0] + ra * (wa[1] * ez - wa[2] * ey) - vb[0] - rb * (wb[1] * ez - wb[2] * ey);
+    const T vy = va[1] + ra * (wa[2] * ex - wa[0] * ez) - vb[1] - rb * (wb[2] * ex - wb[0] * ez);
+    const T vz = va[2] + ra * (wa[0] * ey - wa[1] * ex) - vb[2] - rb * (wb[0] * ey - wb[1] * ex);
     out.Fd[0] = c.ct * vx, out.Fd[1] = c.ct * vy, out.Fd[2] = c.ct * vz;
     out.Md[0] = c.cr * (wa[0] - wb[0]);
     out.Md[1] = c.cr * (wa[1] - wb[1]);
@@ -126,19 +130,32 @@ template <bool dashpots>
   }
   else
   {
-    out.Fd[0] = out.Fd[1] = out.Fd[2] = 0.0;
-    out.Md[0] = out.Md[1] = out.Md[2] = 0.0;
+    out.Fd[0] = out.Fd[1] = out.Fd[2] = T{};
+    out.Md[0] = out.Md[1] = out.Md[2] = T{};
   }
+}
+
+/// The unified law for one bond: the scalar kernel (tests, tools, the per-bond measurements).
+template <bool dashpots>
+[[gnu::always_inline]] inline void bond_law(const double* xa, const double* xb, const double* qa,
+                                            const double* qb, const double* va, const double* vb,
+                                            const double* wa, const double* wb,
+                                            const BondConstants& c, BondForces& out)
+{
+  const LawConstants<double> k{
+      c.L0, {c.e0[0], c.e0[1], c.e0[2]}, c.kn, c.ks, c.ktor, c.kben, c.s, c.ct, c.cr};
+  bond_law_of<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, k, out);
 }
 
 /// The particle resultants' moments (Table 8) of a contact force F and couple M acting on b at
 /// the contact point: M_a = -M - r_a e x F on a, M_b = M + r_b e x F on b (the forces are -F on
 /// a and F on b).
-[[gnu::always_inline]] inline void resultant_moments(const double* F, const double* M,
-                                                     const BondForces& f, double* Ma, double* Mb)
+template <class T>
+[[gnu::always_inline]] inline void resultant_moments(const T* F, const T* M,
+                                                     const BondForcesOf<T>& f, T* Ma, T* Mb)
 {
-  const double cx = f.e[1] * F[2] - f.e[2] * F[1], cy = f.e[2] * F[0] - f.e[0] * F[2],
-               cz = f.e[0] * F[1] - f.e[1] * F[0];
+  const T cx = f.e[1] * F[2] - f.e[2] * F[1], cy = f.e[2] * F[0] - f.e[0] * F[2],
+          cz = f.e[0] * F[1] - f.e[1] * F[0];
   Ma[0] = -M[0] - f.ra * cx, Ma[1] = -M[1] - f.ra * cy, Ma[2] = -M[2] - f.ra * cz;
   Mb[0] = M[0] + f.rb * cx, Mb[1] = M[1] + f.rb * cy, Mb[2] = M[2] + f.rb * cz;
 }

@@ -63,6 +63,7 @@ public:
                       bool need_sum = true, bool need_worst = true)
   {
     (void)vector_path; // why: read by the vector path only
+    (void)threads;
     (void)need_sum;
     (void)need_worst;
 #if !defined(_OPENMP)

@@ -46,8 +46,9 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   for (std::size_t k0 = begin; k0 < end; k0 += BondBlock::W)
   {
     const int m = int(std::min<std::size_t>(BondBlock::W, end - k0));
-    bond_law_block<dashpots>(arrays, k0, m, block); // the law in SIMD lanes
-    for (int j = 0; j < m; ++j)                     // scatter, failure, records: bond by bond
+    // the law in SIMD lanes; the contact-force rows only where they are read below
+    bond_law_block<dashpots, record || failure != FailureMode::none>(arrays, k0, m, block);
+    for (int j = 0; j < m; ++j) // scatter, failure, records: bond by bond
     {
       const std::size_t k = k0 + std::size_t(j);
       if constexpr (failure == FailureMode::none)

@@ -182,27 +182,31 @@ INSTANTIATE_TEST_SUITE_P(LatticeAndRandom, BondLoop,
                                   (c.damping > 0 ? "_dashpots" : "_no_dashpots") + "_threads" +
                                   std::to_string(c.threads);
                          });
-/// The records a block hands to the scatter (bond_block.h), formed in lanes by masks and
-/// in-register transposes, against the one-bond-at-a-time version: bitwise the same for every
-/// lane and record slot, for both orders of a bond's ends, with and without dashpots (a
-/// swapped lane, slot or choice of end fails it).
+/// The records a block hands to the scatter (bond_block.h): which end gets what (end_lanes, by
+/// a lane mask) against the law's resultants bond by bond, and the in-register transposes
+/// (store_records) against one value at a time, bitwise, for both orders of a bond's ends, with
+/// and without dashpots (a swapped lane, slot or choice of end fails it).
 template <bool dashpots> void check_particle_records()
 {
   constexpr int W = BondBlock::W, S = particle_record_size<dashpots>;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
-  BondBlock lanes;
-  for (auto* rows : {lanes.Fc, lanes.Ma, lanes.Mb, lanes.Fd, lanes.Mda, lanes.Mdb})
+  BondForcesOf<Lanes> f;
+  Lanes ma[3], mb[3], mda[3], mdb[3];
+  for (Lanes* v : {f.Fc, f.Fd, ma, mb, mda, mdb})
     for (int d = 0; d < 3; ++d)
       for (int j = 0; j < W; ++j)
-        rows[d][j] = u(rng);
-  lanes.Fc[1][2] = 0.0; // a signed zero must come out negated on one end
-  std::int32_t ia[W], ib[W];
+        v[d][j] = u(rng);
+  f.Fc[1][2] = 0.0; // a signed zero must come out negated on one end
+  LaneIndices ia, ib;
   for (int j = 0; j < W; ++j)
     ia[j] = 10 * j + (j % 3 == 0 ? 7 : 0), ib[j] = 10 * j + 3; // a < b in some lanes only
-  BondBlock scalar = lanes;
-  particle_records<dashpots, W>(ia, ib, lanes);
-  particle_records_scalar<dashpots, W>(ia, ib, scalar);
+  const auto ends = end_lanes<dashpots>(ia, ib, f, ma, mb, mda, mdb);
+  BondBlock lanes, scalar;
+  store_records<S>(ends.lower, lanes.lower);
+  store_records<S>(ends.upper, lanes.upper);
+  store_records_scalar<S>(ends.lower, scalar.lower);
+  store_records_scalar<S>(ends.upper, scalar.upper);
   for (int j = 0; j < W; ++j)
     for (int d = 0; d < S; ++d)
     {
@@ -210,8 +214,7 @@ template <bool dashpots> void check_particle_records()
       EXPECT_EQ(lanes.lower[j][d], scalar.lower[j][d]) << "lane " << j << " slot " << d;
       EXPECT_EQ(lanes.upper[j][d], scalar.upper[j][d]) << "lane " << j << " slot " << d;
     }
-  // and the scalar version is what the law's resultants say (bond_kernel.h): -F_c and M_a on
-  // a, F_c and M_b on b
+  // what the law's resultants say (bond_kernel.h): -F_c and M_a on a, F_c and M_b on b
   for (int j = 0; j < W; ++j)
   {
     const bool a_lower = ia[j] < ib[j];
@@ -219,16 +222,19 @@ template <bool dashpots> void check_particle_records()
     const double* on_b = a_lower ? scalar.upper[j] : scalar.lower[j];
     for (int d = 0; d < 3; ++d)
     {
-      EXPECT_EQ(on_a[d], -lanes.Fc[d][j]);
-      EXPECT_EQ(on_b[d], lanes.Fc[d][j]);
-      EXPECT_EQ(on_a[3 + d], lanes.Ma[d][j]);
-      EXPECT_EQ(on_b[3 + d], lanes.Mb[d][j]);
+      EXPECT_EQ(on_a[d], -f.Fc[d][j]);
+      EXPECT_EQ(on_b[d], f.Fc[d][j]);
+      EXPECT_EQ(on_a[3 + d], ma[d][j]);
+      EXPECT_EQ(on_b[3 + d], mb[d][j]);
       if (dashpots)
       {
-        EXPECT_EQ(on_a[6 + d], -lanes.Fd[d][j]);
-        EXPECT_EQ(on_b[9 + d], lanes.Mdb[d][j]);
+        EXPECT_EQ(on_a[6 + d], -f.Fd[d][j]);
+        EXPECT_EQ(on_b[6 + d], f.Fd[d][j]);
+        EXPECT_EQ(on_a[9 + d], mda[d][j]);
+        EXPECT_EQ(on_b[9 + d], mdb[d][j]);
       }
     }
+    EXPECT_TRUE(std::signbit(on_a[1]) != std::signbit(on_b[1]) || j != 2);
   }
 }
 
