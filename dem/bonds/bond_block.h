@@ -168,8 +168,18 @@ end_lanes(LaneIndices ia, LaneIndices ib, const BondForcesOf<Lanes>& f, const La
   return r;
 }
 
+/// Rows (value d of bonds 0..7) to records, rows[d][j] -> dst[j][d], one value at a time: the
+/// reference the transposes below are tested against, and the path without AVX-512.
+template <int S>
+inline void store_records_scalar(const Lanes (&rows)[S], double (*dst)[particle_record_capacity])
+{
+  for (int j = 0; j < 8; ++j)
+    for (int d = 0; d < S; ++d)
+      dst[j][d] = rows[d][j];
+}
+
 /// Rows (value d of bonds 0..7) to records: rows[d][j] -> dst[j][d], d < S. AVX-512: 4 x 8
-/// transposes in registers; otherwise element by element.
+/// transposes in registers.
 template <int S>
 [[gnu::always_inline]] inline void store_records(const Lanes (&rows)[S],
                                                  double (*dst)[particle_record_capacity])
@@ -197,19 +207,8 @@ template <int S>
     _mm256_store_pd(dst[7] + at, _mm512_extractf64x4_pd(b57, 1));
   }
 #else
-  for (int j = 0; j < 8; ++j)
-    for (int d = 0; d < S; ++d)
-      dst[j][d] = rows[d][j];
+  store_records_scalar<S>(rows, dst);
 #endif
-}
-
-/// The records of end_lanes one bond at a time: the reference the lanes are tested against.
-template <int S>
-inline void store_records_scalar(const Lanes (&rows)[S], double (*dst)[particle_record_capacity])
-{
-  for (int j = 0; j < 8; ++j)
-    for (int d = 0; d < S; ++d)
-      dst[j][d] = rows[d][j];
 }
 
 /// Eight values from p[0..m) as lanes, lanes past m repeating p[m - 1].
