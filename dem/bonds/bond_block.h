@@ -63,6 +63,9 @@ struct BondLawArrays
 /// record is whole 256-bit vectors.
 template <bool dashpots> inline constexpr int particle_record_size = dashpots ? 12 : 8;
 inline constexpr int particle_record_capacity = 12;
+/// Where a record's parts start.
+inline constexpr int record_force = 0, record_moment = 3, record_dashpot_force = 6,
+                     record_dashpot_moment = 9;
 
 /// A particle record (particle_record_size doubles) in registers: the scatter's sum for the
 /// lower particle of a run of bonds, and the adds of whole records (32-byte aligned: the
@@ -160,9 +163,9 @@ end_lanes(LaneIndices ia, LaneIndices ib, const BondForcesOf<Lanes>& f, const La
       r.upper[at + 3 + d] = a_lower ? Mb[d] : Ma[d];
     }
   };
-  ends(f.Fc, ma, mb, 0);
+  ends(f.Fc, ma, mb, record_force); // the moment 3 after its force, as record_moment
   if constexpr (dashpots)
-    ends(f.Fd, mda, mdb, 6);
+    ends(f.Fd, mda, mdb, record_dashpot_force);
   else
     r.lower[6] = r.lower[7] = r.upper[6] = r.upper[7] = Lanes{};
   return r;

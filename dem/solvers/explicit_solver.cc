@@ -234,11 +234,11 @@ template <bool record> void ExplicitSolver::integrate()
     {
       // work of the bond dashpots on this particle, d^n . (v^{n-1/2} + v^{n+1/2})/2 dt
       double* const sum = &particle_sums_[particle_record_size<true> * i];
-      const Vec3 fd(sum + 6), md(sum + 9);
+      const Vec3 fd(sum + record_dashpot_force), md(sum + record_dashpot_moment);
       dissipation -= 0.5 * dt * (fd.dot(v0 + v1) + md.dot(w0 + w1));
       if constexpr (record)
         lead -= 0.5 * dt * (fd.dot(v1) + md.dot(w1));
-      std::fill(sum + 6, sum + 12, 0.0);
+      std::fill(sum + record_dashpot_force, sum + particle_record_size<true>, 0.0);
     }
     v[i] = v1;
     w[i] = w1;

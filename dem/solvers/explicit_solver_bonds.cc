@@ -203,10 +203,9 @@ void ExplicitSolver::compute_bond_forces()
   for (long i = 0; i < n; ++i)
   {
     double* r = sums + S * i;
-    p_.force[std::size_t(i)] = Vec3(r[0], r[1], r[2]);
-    p_.torque[std::size_t(i)] = Vec3(r[3], r[4], r[5]);
-    for (int d = 0; d < 6; ++d)
-      r[d] = 0.0;
+    p_.force[std::size_t(i)] = Vec3(r + record_force);
+    p_.torque[std::size_t(i)] = Vec3(r + record_moment);
+    std::fill(r + record_force, r + record_dashpot_force, 0.0);
   }
   if constexpr (record)
   {
@@ -270,7 +269,7 @@ std::vector<Vec3> ExplicitSolver::dashpot_forces() const
   std::vector<Vec3> out(p_.size(), Vec3::Zero());
   if (dashpots_)
     for (std::size_t i = 0; i < out.size(); ++i)
-      out[i] = Vec3(&particle_sums_[12 * i + 6]);
+      out[i] = Vec3(&particle_sums_[particle_record_size<true> * i + record_dashpot_force]);
   return out;
 }
 
@@ -279,7 +278,7 @@ std::vector<Vec3> ExplicitSolver::dashpot_torques() const
   std::vector<Vec3> out(p_.size(), Vec3::Zero());
   if (dashpots_)
     for (std::size_t i = 0; i < out.size(); ++i)
-      out[i] = Vec3(&particle_sums_[12 * i + 9]);
+      out[i] = Vec3(&particle_sums_[particle_record_size<true> * i + record_dashpot_moment]);
   return out;
 }
 
