@@ -20,7 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <vector>
-#if defined(__AVX__)
+#if defined(__AVX512F__)
 #include <immintrin.h>
 #endif
 
@@ -62,53 +62,41 @@ struct BondLawArrays
 /// dashpot parts, force 6-8 and moment 9-11; without dashpots 6-7 are padding (zero), so that a
 /// record is whole 256-bit vectors.
 template <bool dashpots> inline constexpr int particle_record_size = dashpots ? 12 : 8;
-inline constexpr int particle_record_capacity = 12;
+inline constexpr int particle_record_capacity = particle_record_size<true>;
 /// Where a record's parts start.
 inline constexpr int record_force = 0, record_moment = 3, record_dashpot_force = 6,
                      record_dashpot_moment = 9;
 
 /// A particle record (particle_record_size doubles) in registers: the scatter's sum for the
-/// lower particle of a run of bonds, and the adds of whole records (32-byte aligned: the
-/// block's rows and the solver's sums are).
+/// lower particle of a run of bonds, and the adds of whole records, as 256-bit vectors (GCC's
+/// vector extension; the block's records and the solver's sums are 32-byte aligned).
 template <int S> struct ParticleRecord
 {
   static_assert(S % 4 == 0);
-#if defined(__AVX__)
-  __m256d v[S / 4];
+  using Quad = double __attribute__((vector_size(4 * sizeof(double)), may_alias));
+  Quad v[S / 4];
   void load(const double* p)
   {
     for (int i = 0; i < S / 4; ++i)
-      v[i] = _mm256_load_pd(p + 4 * i);
+      v[i] = *reinterpret_cast<const Quad*>(p + 4 * i);
   }
   void store(double* p) const
   {
     for (int i = 0; i < S / 4; ++i)
-      _mm256_store_pd(p + 4 * i, v[i]);
+      *reinterpret_cast<Quad*>(p + 4 * i) = v[i];
   }
   /// this += c * r (scaled) or this += r
   template <bool scaled> void add(const double* r, double c)
   {
     for (int i = 0; i < S / 4; ++i)
-      v[i] = scaled
-                 ? _mm256_add_pd(v[i], _mm256_mul_pd(_mm256_set1_pd(c), _mm256_load_pd(r + 4 * i)))
-                 : _mm256_add_pd(v[i], _mm256_load_pd(r + 4 * i));
+    {
+      const Quad x = *reinterpret_cast<const Quad*>(r + 4 * i);
+      if constexpr (scaled)
+        v[i] += c * x;
+      else
+        v[i] += x;
+    }
   }
-#else
-  double v[S];
-  void load(const double* p)
-  {
-    std::copy(p, p + S, v);
-  }
-  void store(double* p) const
-  {
-    std::copy(v, v + S, p);
-  }
-  template <bool scaled> void add(const double* r, double c)
-  {
-    for (int i = 0; i < S; ++i)
-      v[i] += scaled ? c * r[i] : r[i];
-  }
-#endif
 };
 
 /// A block's output, lane j = bond k0 + j: the records for the scatter, and on steps that read
@@ -167,7 +155,8 @@ end_lanes(LaneIndices ia, LaneIndices ib, const BondForcesOf<Lanes>& f, const La
   if constexpr (dashpots)
     ends(f.Fd, mda, mdb, record_dashpot_force);
   else
-    r.lower[6] = r.lower[7] = r.upper[6] = r.upper[7] = Lanes{};
+    for (int d = record_dashpot_force; d < particle_record_size<false>; ++d) // padding
+      r.lower[d] = r.upper[d] = Lanes{};
   return r;
 }
 

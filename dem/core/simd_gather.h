@@ -33,9 +33,9 @@ template <int n>
   auto pair = [&](int j) // lane j in the low half, lane j + 4 in the high half
   { return _mm512_insertf64x4(_mm512_castpd256_pd512(load(j)), load(j + 4), 1); };
   const __m512d z0 = pair(0), z1 = pair(1), z2 = pair(2), z3 = pair(3);
-  const __m512d t0 = _mm512_unpacklo_pd(z0, z1);
-  const __m512d t1 = _mm512_unpackhi_pd(z0, z1);
-  const __m512d t2 = _mm512_unpacklo_pd(z2, z3);
+  const __m512d t0 = _mm512_unpacklo_pd(z0, z1); // r0c0 r1c0 r0c2 r1c2 | r4c0 r5c0 r4c2 r5c2
+  const __m512d t1 = _mm512_unpackhi_pd(z0, z1); // the same with c1, c3
+  const __m512d t2 = _mm512_unpacklo_pd(z2, z3); // r2c0 r3c0 r2c2 r3c2 | r6c0 r7c0 ...
   const __m512d t3 = _mm512_unpackhi_pd(z2, z3);
   const __m512i even = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
   const __m512i odd = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
