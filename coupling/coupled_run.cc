@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <stdexcept>
 #include <deal.II/base/mpi.h>
 
 namespace dembridge::coupling
@@ -23,9 +24,12 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto last_progress = start, last_checkpoint = start;
-  const double dt = problem.time_step();
   // the steps to the end time, rounded so that t_end itself is reached
-  const long planned = std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / dt - 1e-9))));
+  long planned =
+      std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / problem.time_step() - 1e-9))));
+  if (problem.adaptive_region() && (s.checkpoint_interval > 0 || s.checkpoint_wall_interval > 0))
+    throw std::runtime_error("Output/checkpoint interval: checkpoints of a run with an adaptive "
+                             "particle region are not available yet");
   const long record_every = std::max(1L, s.record_interval);
 
   CoupledRunProgress progress;
@@ -36,12 +40,28 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
 
   CoupledRunResult r;
   r.stop_reason = planned == s.max_steps ? "max steps" : "end time";
+  // an adaptive region is checked at every record, and while bonds break every few steps
+  const AdaptiveRegion* adaptive = problem.adaptive_region();
+  long last_check = first, broken_at_check = 0;
+  auto broken_bonds = [&]
+  {
+    const auto* solver = problem.particle_solver();
+    long n = solver ? solver->n_broken_bonds() : 0;
+    if (dealii::Utilities::MPI::n_mpi_processes(problem.communicator()) > 1)
+      n = dealii::Utilities::MPI::broadcast(problem.communicator(), n, 0);
+    return n;
+  };
   for (long n = first; n < planned; ++n)
   {
     const bool last = n + 1 == planned;
     const bool snapshot =
         n == 0 || last || (s.snapshot_interval > 0 && (n + 1) % s.snapshot_interval == 0);
-    const bool record = n == 0 || last || snapshot || (n + 1) % record_every == 0;
+    const bool crack_check =
+        adaptive && adaptive->settings().crack_check_interval > 0 &&
+        n + 1 - last_check >= adaptive->settings().crack_check_interval &&
+        broken_bonds() > broken_at_check;
+    const bool record =
+        n == 0 || last || snapshot || crack_check || (n + 1) % record_every == 0;
     problem.step(record);
     if (record)
     {
@@ -49,6 +69,19 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
       progress.max_balance_error = std::max(progress.max_balance_error, e.balance_error());
       progress.max_tie_gap = std::max(progress.max_tie_gap, problem.max_tie_gap());
       observer.on_record(problem);
+      if (adaptive && !last)
+      {
+        last_check = n + 1;
+        broken_at_check = broken_bonds();
+        if (const auto event = problem.grow_region_if_due())
+        {
+          observer.on_region_growth(problem, *event);
+          // the common step may have changed: the steps left to the end time anew
+          const long left =
+              long(std::ceil((s.end_time - problem.time()) / problem.time_step() - 1e-9));
+          planned = std::min(s.max_steps, n + 1 + std::max(1L, left));
+        }
+      }
       bool at_rest = false;
       if (s.rest_tolerance > 0 && problem.time() >= s.rest_after)
       {
@@ -80,6 +113,7 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
     // Checkpoints between steps, after the step's records (as run_explicit.cc): on simulated
     // time (reproducible steps) or on wall time.
     bool checkpoint = false;
+    const double dt = problem.time_step();
     if (s.checkpoint_interval > 0 && problem.time() + 0.5 * dt >= progress.next_checkpoint_time)
     {
       checkpoint = true;

@@ -19,6 +19,9 @@ void CoupledProblem::gather_state()
 
 void CoupledProblem::visit_state(dem::StateArchive& a)
 {
+  if (adaptive_)
+    throw dem::InputError("Output/checkpoint interval: checkpoints of a run with an adaptive "
+                          "particle region are not available yet");
   solver_->visit_state(a); // /particles/, /bonds/, /solver/ (rank 0's)
   fe_->visit_state(a);     // /fe/
   visit_tie(a);            // /coupling/
