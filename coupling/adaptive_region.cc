@@ -98,7 +98,8 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
                         lines_[2][k + 1] - lines_[2][k]);
         cell_volume_[c] = size.prod();
         const Vec3 x = centre(c);
-        const bool inside = (x - s.envelope_lo).minCoeff() > 0 && (s.envelope_hi - x).minCoeff() > 0;
+        const bool inside =
+            (x - s.envelope_lo).minCoeff() > 0 && (s.envelope_hi - x).minCoeff() > 0;
         envelope_[c] = inside;
         if (inside)
           h = std::min(h, size.minCoeff());
@@ -182,8 +183,8 @@ void AdaptiveRegion::start_from_box(const Vec3& lo, const Vec3& hi, const std::s
     if (region_[c] && !envelope_[c])
       throw std::runtime_error(key_name + ": the particle box (" + text(lo) + " to " + text(hi) +
                                ") reaches outside the adaptive region's envelope (" +
-                               text(settings_.envelope_lo) + " to " +
-                               text(settings_.envelope_hi) + ")");
+                               text(settings_.envelope_lo) + " to " + text(settings_.envelope_hi) +
+                               ")");
     n += region_[c];
   }
   if (n == 0)
@@ -200,8 +201,8 @@ void AdaptiveRegion::set_families(std::vector<BondFamily> families)
 void AdaptiveRegion::set_cells(std::vector<char> cells)
 {
   if (cells.size() != region_.size())
-    throw std::runtime_error(where + "cells: " + std::to_string(cells.size()) + " cells, the grid has " +
-                             std::to_string(region_.size()));
+    throw std::runtime_error(where + "cells: " + std::to_string(cells.size()) +
+                             " cells, the grid has " + std::to_string(region_.size()));
   region_ = std::move(cells);
 }
 
@@ -226,16 +227,16 @@ std::shared_ptr<const RegionVolume> AdaptiveRegion::volume() const
         // Kuhn's six tetrahedra around the diagonal v0-v7
         const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
         for (const auto& o : orders)
-          tets.push_back(Tetrahedron{{vertex(0), vertex(1 << o[0]),
-                                      vertex((1 << o[0]) | (1 << o[1])), vertex(7)}});
+          tets.push_back(Tetrahedron{
+              {vertex(0), vertex(1 << o[0]), vertex((1 << o[0]) | (1 << o[1])), vertex(7)}});
         // faces towards cells outside the region (or outside the grid), two triangles each
         for (int d = 0; d < 3; ++d)
           for (const int side : {0, 1})
           {
             int next[3] = {i, j, k};
             next[d] += side ? 1 : -1;
-            const bool open = next[d] < 0 || next[d] >= n_[d] ||
-                              !region_[cell_index(next[0], next[1], next[2])];
+            const bool open =
+                next[d] < 0 || next[d] >= n_[d] || !region_[cell_index(next[0], next[1], next[2])];
             if (!open)
               continue;
             const int a = (d + 1) % 3, b = (d + 2) % 3, base = side << d;
@@ -245,8 +246,7 @@ std::shared_ptr<const RegionVolume> AdaptiveRegion::volume() const
             faces.push_back(Triangle{{v00, v11, v01}});
           }
       }
-  return std::make_shared<const RegionVolume>(std::move(tets), std::move(faces),
-                                              where + "cells");
+  return std::make_shared<const RegionVolume>(std::move(tets), std::move(faces), where + "cells");
 }
 
 bool AdaptiveRegion::in_cells(const std::vector<char>& cells, const Vec3& x) const

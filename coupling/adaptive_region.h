@@ -22,14 +22,15 @@
 // BandDamage: on the bond's whole force, against its own strength) is at or above the band
 // threshold: the particle model's own measure where damage nears the band. (Its scale is not
 // Ubar's: a bond's index carries its own strength's scatter and its bending, which the
-// continuum's average does not; the same beam reaches 0.5 in the band with Ubar below 0.3.) The region takes every envelope cell within n whole layers of a marked cell (index
-// distance n along each axis), n = ceil(L / h - 1/2) + layers ahead, so that the marked cell's
-// centre ends deeper than the band width L and becomes particle-only. The region never shrinks
-// (no switching back). Cells that touch a fixed or driven FE node (the supports, the driven
-// faces) never join: the continuum keeps its boundary conditions. Refused at a check: a
-// threshold passed in every FE cell (a uniform stress: the region would grow through the whole
-// body). Capped: a growth that would put more than `maximum particles` in the region is not
-// made (the run says so once and goes on with the region it has).
+// continuum's average does not; the same beam reaches 0.5 in the band with Ubar below 0.3.)
+// The region takes every envelope cell within n whole layers of a marked cell (index distance n
+// along each axis), n = ceil(L / h - 1/2) + layers ahead, so that the marked cell's centre ends
+// deeper than the band width L and becomes particle-only. The region never shrinks (no switching
+// back). Cells that touch a fixed or driven FE node (the supports, the driven faces) never join:
+// the continuum keeps its boundary conditions. Refused at a check: a threshold passed in every FE
+// cell (a uniform stress: the region would grow through the whole body). Capped: a growth that
+// would put more than `maximum particles` in the region is not made (the run says so once and
+// goes on with the region it has).
 // Packing. The packing a full-DEM run would use: the lattice over the envelope (a lattice
 // continued by whole periods: the envelope's lower corner lies a whole number of periods from
 // the domain's, and the cells hold whole particles), generated once; the region keeps its
@@ -54,14 +55,14 @@ struct AdaptiveRegionSettings
 {
   bool enabled = false;
   double threshold = 0.7;            ///< Ubar at which a cell turns into particles, in (0, 1]
-  double band_threshold = 0.8; ///< a band bond's failure index that turns its cell, in (0, 1]
+  double band_threshold = 0.8;       ///< a band bond's failure index that turns its cell, in (0, 1]
   double averaging_radius = 0;       ///< R, m; 0: the band width
   std::size_t maximum_particles = 0; ///< 0: no cap
   int layers_ahead = 2;              ///< whole layers beyond the least that makes a cell deep
   /// While bonds break, growth is checked every this many steps (each a record) instead of at
   /// every record: a crack can cross the band between two records.
   long crack_check_interval = 10;
-  bool envelope_given = false;       ///< false: the FE domain
+  bool envelope_given = false;                                 ///< false: the FE domain
   Vec3 envelope_lo = Vec3::Zero(), envelope_hi = Vec3::Zero(); ///< m
 };
 
@@ -73,9 +74,9 @@ struct GrowthEvent
   std::size_t cells_added = 0, region_cells = 0;
   std::size_t particles_added = 0, n_particles = 0;
   std::size_t bonds_added = 0, n_bonds = 0;
-  std::size_t marked_cells = 0;  ///< FE cells at or above the threshold (either measure)
+  std::size_t marked_cells = 0;    ///< FE cells at or above the threshold (either measure)
   std::size_t marked_by_bonds = 0; ///< of them, by a band bond at or above the band threshold
-  double max_utilisation = 0;    ///< largest Ubar over the FE cells
+  double max_utilisation = 0;      ///< largest Ubar over the FE cells
   /// Stored energy of both sides (strain, load potential and kinetic energy with the half-step
   /// velocities, J) of the same state before and after the transfer, and the strain energy of
   /// the body before it.
@@ -124,10 +125,10 @@ public:
   {
     enum class Kind
     {
-      none,       ///< nothing marked, or nothing left to add
-      grow,       ///< cells: the region after growing
-      capped,     ///< the growth would pass `maximum particles`
-      whole_body  ///< every FE cell marked: a uniform stress
+      none,      ///< nothing marked, or nothing left to add
+      grow,      ///< cells: the region after growing
+      capped,    ///< the growth would pass `maximum particles`
+      whole_body ///< every FE cell marked: a uniform stress
     } kind = Kind::none;
     std::vector<char> cells;
     std::size_t cells_added = 0, marked = 0, marked_by_bonds = 0, particles = 0;
@@ -166,13 +167,13 @@ private:
   double spacing_ = 0;
   std::array<int, 3> n_{{0, 0, 0}};
   std::vector<double> cell_volume_;
-  std::vector<char> envelope_;       ///< the cell may join the region
-  std::vector<char> region_;         ///< the cell is in the region
-  std::vector<char> continuum_;      ///< the cell is an FE cell (at the last measure)
-  std::vector<char> anchored_;       ///< the cell touches a fixed or driven FE node
-  std::vector<float> utilisation_;   ///< U_c
-  std::vector<float> averaged_;      ///< Ubar_c
-  std::vector<char> bond_marked_;    ///< the cell holds a band bond at or above the threshold
+  std::vector<char> envelope_;     ///< the cell may join the region
+  std::vector<char> region_;       ///< the cell is in the region
+  std::vector<char> continuum_;    ///< the cell is an FE cell (at the last measure)
+  std::vector<char> anchored_;     ///< the cell touches a fixed or driven FE node
+  std::vector<float> utilisation_; ///< U_c
+  std::vector<float> averaged_;    ///< Ubar_c
+  std::vector<char> bond_marked_;  ///< the cell holds a band bond at or above the threshold
   std::vector<std::uint32_t> cell_particles_;
   std::map<std::array<std::int64_t, 3>, std::int32_t> packing_index_;
   double max_utilisation_ = 0;

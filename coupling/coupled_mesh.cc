@@ -89,12 +89,10 @@ GridLines grid_lines(const Vec3& lo, const GridLines& steps)
   return lines;
 }
 
-fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
-                                     const double band_element_size,
-                                     parallel::distributed::Triangulation<3>& tria,
-                                     std::vector<RemovedShare>* removed,
-                                     const Vec3& far_element_size, const double growth,
-                                     const GridLines* fine_planes)
+fem::BoundaryNames
+make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double band_element_size,
+                  parallel::distributed::Triangulation<3>& tria, std::vector<RemovedShare>* removed,
+                  const Vec3& far_element_size, const double growth, const GridLines* fine_planes)
 {
   const auto& g = h.geometry();
   const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
@@ -103,7 +101,8 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
                          band_element_size, far_element_size, growth);
   Triangulation<3> box;
   GridGenerator::subdivided_hyper_rectangle(
-      box, std::vector<std::vector<double>>(steps.begin(), steps.end()), Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
+      box, std::vector<std::vector<double>>(steps.begin(), steps.end()),
+      Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
       Point<3>(g.domain_hi[0], g.domain_hi[1], g.domain_hi[2]));
   std::set<Triangulation<3>::active_cell_iterator> remove;
   // A cell goes when its centre and its eight Gauss points lie in the particle-only region, where

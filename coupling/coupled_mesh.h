@@ -44,6 +44,5 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
                                      dealii::parallel::distributed::Triangulation<3>& tria,
                                      std::vector<RemovedShare>* removed = nullptr,
                                      const Vec3& far_element_size = Vec3::Zero(),
-                                     double growth = 1.2,
-                                     const GridLines* fine_planes = nullptr);
+                                     double growth = 1.2, const GridLines* fine_planes = nullptr);
 } // namespace dembridge::coupling

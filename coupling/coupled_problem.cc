@@ -154,8 +154,8 @@ void CoupledProblem::build(const std::function<void()>& adopt)
     const AdaptiveRegion& a = *adaptive_;
     fe_->add_cell_output("particle_region", [&h](const Point<3>& x)
                          { return h.in_particle_box(to_vec(x)) ? 1.0 : 0.0; });
-    fe_->add_cell_output("utilisation", [&a](const Point<3>& x)
-                         { return a.averaged_utilisation(to_vec(x)); });
+    fe_->add_cell_output("utilisation",
+                         [&a](const Point<3>& x) { return a.averaged_utilisation(to_vec(x)); });
   }
   fe_->setup();
   for (const auto& d : settings_.driven)
@@ -189,8 +189,8 @@ void CoupledProblem::build(const std::function<void()>& adopt)
               for (std::size_t k = 0; k < b.size(); ++k)
                 ra.push_back(model_.particles.radius[b.a[k]]),
                     rb.push_back(model_.particles.radius[b.b[k]]);
-              adaptive_->set_families(bond_families(b.rest_axis, b.rest_length, ra, rb,
-                                                    dem_case_.bonds.material));
+              adaptive_->set_families(
+                  bond_families(b.rest_axis, b.rest_length, ra, rb, dem_case_.bonds.material));
             }
             if (adopt)
               adopt();

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <stdexcept>
 #include <deal.II/base/mpi.h>
+#include <stdexcept>
 
 namespace dembridge::coupling
 {
@@ -56,12 +56,10 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
     const bool last = n + 1 == planned;
     const bool snapshot =
         n == 0 || last || (s.snapshot_interval > 0 && (n + 1) % s.snapshot_interval == 0);
-    const bool crack_check =
-        adaptive && adaptive->settings().crack_check_interval > 0 &&
-        n + 1 - last_check >= adaptive->settings().crack_check_interval &&
-        broken_bonds() > broken_at_check;
-    const bool record =
-        n == 0 || last || snapshot || crack_check || (n + 1) % record_every == 0;
+    const bool crack_check = adaptive && adaptive->settings().crack_check_interval > 0 &&
+                             n + 1 - last_check >= adaptive->settings().crack_check_interval &&
+                             broken_bonds() > broken_at_check;
+    const bool record = n == 0 || last || snapshot || crack_check || (n + 1) % record_every == 0;
     problem.step(record);
     if (record)
     {

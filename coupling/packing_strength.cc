@@ -23,8 +23,8 @@ std::vector<BondFamily> bond_families(const std::vector<Vec3>& rest_axes,
           n = -n;
         break;
       }
-    const bool known = std::any_of(families.begin(), families.end(), [&](const BondFamily& f)
-                                   { return (f.axis - n).norm() < 1e-6; });
+    const bool known = std::any_of(families.begin(), families.end(),
+                                   [&](const BondFamily& f) { return (f.axis - n).norm() < 1e-6; });
     if (known)
       continue;
     const auto k0 = dem::bond_stiffness(material, rest_lengths[k], radii_a[k], radii_b[k]);

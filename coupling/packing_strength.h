@@ -42,7 +42,7 @@ using dem::Vec3;
 struct BondFamily
 {
   Vec3 axis = Vec3::UnitX();
-  double kn = 0, ks = 0; ///< N/m
+  double kn = 0, ks = 0;              ///< N/m
   double rest_length = 0, radius = 0; ///< m
 };
 

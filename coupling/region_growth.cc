@@ -118,6 +118,9 @@ void CoupledProblem::prepare_adaptive_region()
     throw std::runtime_error("Contacts/model: contacts and walls are not available with an "
                              "adaptive region yet (their state is not handed over at a growth)");
   const auto& damage = dem_case_.damage;
+  if (damage.law.mode == dem::FailureMode::none)
+    throw std::runtime_error("Coupling/Adaptive region/enabled: the particle model has no bond "
+                             "strengths to grow against (Damage/failure = none)");
   if (damage.scatter != dem::StrengthScatter::none && !damage.scatter_by_position)
     throw std::runtime_error("Damage/scatter key: an adaptive region needs scatter key = position "
                              "(a bond keeps its strength whatever the region, as in full DEM)");
@@ -125,11 +128,10 @@ void CoupledProblem::prepare_adaptive_region()
   const Vec3 hi = a.envelope_given ? a.envelope_hi : g.domain_hi;
   for (int d = 0; d < 3; ++d)
     fine_planes_[d] = {lo[d], hi[d]};
-  const GridLines lines =
-      grid_lines(g.domain_lo, coupled_mesh_steps(g, fine_planes_, settings_.element_size,
-                                                 settings_.band_element_size,
-                                                 settings_.far_element_size,
-                                                 settings_.element_growth));
+  const GridLines lines = grid_lines(
+      g.domain_lo,
+      coupled_mesh_steps(g, fine_planes_, settings_.element_size, settings_.band_element_size,
+                         settings_.far_element_size, settings_.element_growth));
   // the packing over the envelope, once (every rank: the region's cells are every rank's)
   dem::ParticleSource whole = src;
   whole.origin = lo;
@@ -241,9 +243,8 @@ std::optional<GrowthEvent> CoupledProblem::grow_region_if_due()
                 "+%zu bonds; energy jump %.3e J (%.2e of the strain energy); time step %.4g s; "
                 "%.2f s\n",
                 event.time, event.marked_cells, event.marked_by_bonds, event.max_utilisation,
-                event.cells_added,
-                event.region_cells, event.particles_added, event.n_particles, event.bonds_added,
-                event.energy_jump(), event.energy_jump_ratio(), event.time_step,
+                event.cells_added, event.region_cells, event.particles_added, event.n_particles,
+                event.bonds_added, event.energy_jump(), event.energy_jump_ratio(), event.time_step,
                 event.wall_seconds);
     std::fflush(stdout);
   }
@@ -430,8 +431,7 @@ GrowthEvent CoupledProblem::grow_region(const std::vector<char>& cells)
           if (acted && model_.groups[gi].members.size() != old.groups[gi].members.size())
             throw std::runtime_error(
                 "Group " + model_.groups[gi].name + ": it holds a load or support and would gain " +
-                std::to_string(model_.groups[gi].members.size() -
-                               old.groups[gi].members.size()) +
+                std::to_string(model_.groups[gi].members.size() - old.groups[gi].members.size()) +
                 " particles as the adaptive region grows; select it inside the particle box");
         }
       });

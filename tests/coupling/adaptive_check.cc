@@ -51,9 +51,9 @@ coupling::PackingStrength cubic_strength(double tensile, double shear)
 {
   coupling::PackingStrength s;
   const std::vector<Vec3> axes = {Vec3::UnitX(), -Vec3::UnitY(), Vec3::UnitZ(), Vec3::UnitX()};
-  s.families = coupling::bond_families(axes, std::vector<double>(4, spacing),
-                                       std::vector<double>(4, radius),
-                                       std::vector<double>(4, radius), material());
+  s.families =
+      coupling::bond_families(axes, std::vector<double>(4, spacing), std::vector<double>(4, radius),
+                              std::vector<double>(4, radius), material());
   s.law.mode = dem::FailureMode::brittle;
   s.tensile_strength = tensile;
   s.shear_strength = shear;
@@ -136,7 +136,8 @@ void check_region_cells(MPI_Comm)
   check(std::abs(h.depth(a) - 1.5 * d) < 1e-9 && std::abs(h.depth(b) - 1.5 * d) < 1e-9 &&
             std::abs(h.depth(c) - 0.5 * d) < 1e-9,
         "depth below the faces inside the domain (faces on the domain's faces are not coupled)");
-  check(h.in_particle_box(a) && h.in_particle_box(b) && !h.in_particle_box(Vec3(6 * d, 5 * d, 6 * d)),
+  check(h.in_particle_box(a) && h.in_particle_box(b) &&
+            !h.in_particle_box(Vec3(6 * d, 5 * d, 6 * d)),
         "containment of the union (the re-entrant corner is outside)");
 }
 
@@ -199,9 +200,9 @@ void check_growth_uniform_strain(MPI_Comm comm)
   // the two sides' strain energies of the same state, before and after the growth
   auto strain_now = [&]
   {
-    return std::pair(dem::particle_stresses(problem.model().particles, problem.model().bonds)
-                         .strain_energy,
-                     problem.continuum().energies_now().strain);
+    return std::pair(
+        dem::particle_stresses(problem.model().particles, problem.model().bonds).strain_energy,
+        problem.continuum().energies_now().strain);
   };
   const auto [dem0, fe0] = strain_now();
   const auto e = problem.grow_region(cells);
@@ -213,9 +214,8 @@ void check_growth_uniform_strain(MPI_Comm comm)
         "the particles added carry the strain energy the continuum gave up, within 1 %");
   std::printf("growth: +%zu particles (%zu -> %zu), +%zu bonds, +%zu cells; stored energy "
               "%.9e J -> %.9e J, jump %.3e J = %.2e of the strain energy %.6e J\n",
-              e.particles_added, n0, e.n_particles, e.bonds_added, e.cells_added,
-              e.energy_before, e.energy_after, e.energy_jump(), e.energy_jump_ratio(),
-              e.strain_energy);
+              e.particles_added, n0, e.n_particles, e.bonds_added, e.cells_added, e.energy_before,
+              e.energy_after, e.energy_jump(), e.energy_jump_ratio(), e.strain_energy);
   check(e.particles_added == 1000 - 512, "the particles of the added layer joined (488)");
   check(e.energy_jump_ratio() < 0.01, "the energy jump within 1 % of the strain energy");
   // relax: the particle-only region carries the strain, nothing rings
@@ -227,14 +227,13 @@ void check_growth_uniform_strain(MPI_Comm comm)
     if (!record)
       continue;
     const auto& en = problem.energies();
-    largest_kinetic = std::max(largest_kinetic, (en.dem_kinetic + en.fe_kinetic) /
-                                                    (en.dem_strain + en.fe_strain));
+    largest_kinetic = std::max(largest_kinetic,
+                               (en.dem_kinetic + en.fe_kinetic) / (en.dem_strain + en.fe_strain));
   }
   const auto& en = problem.energies();
   std::printf("after 4000 steps: particles' strain energy %.6e J (%.6e J before the growth), "
               "continuum %.6e J; largest kinetic share %.2e; balance error %.2e\n",
-              en.dem_strain, dem_strain_before, en.fe_strain, largest_kinetic,
-              en.balance_error());
+              en.dem_strain, dem_strain_before, en.fe_strain, largest_kinetic, en.balance_error());
   const auto& h = problem.handshake();
   const auto fit = coupling::fit_particle_strain(problem.model().particles, [&](const Vec3& X)
                                                  { return h.in_particle_only(X); });
