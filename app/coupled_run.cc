@@ -387,7 +387,7 @@ void add_growth_summary(nlohmann::json& j, const CoupledProblem& p)
   j["region_cells_final"] = a.n_region_cells();
   j["particle_region_packing_fraction"] =
       double(a.n_region_particles()) / double(std::max<std::size_t>(1, a.packing().size()));
-  j["max_utilisation"] = a.max_utilisation();
+  j["max_utilisation"] = a.largest_utilisation();
   j["region_growth_capped"] = p.growth_cap().reached;
   if (p.growth_cap().reached)
     j["region_growth_capped_time"] = p.growth_cap().time;

@@ -345,6 +345,7 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
     averaged_[c] = float(weights > 0 ? sum / weights : utilisation_[c]);
     max_utilisation_ = std::max(max_utilisation_, double(averaged_[c]));
   }
+  largest_utilisation_ = std::max(largest_utilisation_, max_utilisation_);
 }
 
 AdaptiveRegion::Proposal AdaptiveRegion::propose() const

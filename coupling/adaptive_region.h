@@ -120,6 +120,8 @@ public:
   /// Ubar of the grid cell that holds @p x (0 where no continuum is).
   double averaged_utilisation(const Vec3& x) const;
   double max_utilisation() const { return max_utilisation_; }
+  /// The largest Ubar of all measures so far.
+  double largest_utilisation() const { return largest_utilisation_; }
 
   struct Proposal
   {
@@ -177,6 +179,7 @@ private:
   std::vector<std::uint32_t> cell_particles_;
   std::map<std::array<std::int64_t, 3>, std::int32_t> packing_index_;
   double max_utilisation_ = 0;
+  double largest_utilisation_ = 0;
   int layers_ = 1; ///< n of the file comment
 };
 } // namespace dembridge::coupling
