@@ -22,7 +22,7 @@
 // BandDamage: on the bond's whole force, against its own strength) is at or above the band
 // threshold: the particle model's own measure where damage nears the band. (Its scale is not
 // Ubar's: a bond's index carries its own strength's scatter and its bending, which the
-// continuum's average does not; the same beam reaches 0.5 in the band with Ubar below 0.3.)
+// continuum's average does not: docs/adaptive.md.)
 // The region takes every envelope cell within n whole layers of a marked cell (index distance n
 // along each axis), n = ceil(L / h - 1/2) + layers ahead, so that the marked cell's centre ends
 // deeper than the band width L and becomes particle-only. The region never shrinks (no switching
