@@ -93,8 +93,7 @@ public:
     if (!root_)
       return;
     // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
-    history_file_.open(dir / "history.csv.part", checkpoint.resume,
-                       (dir / "history.csv").string());
+    history_file_.open(dir / "history.csv.part", checkpoint.resume, (dir / "history.csv").string());
     history_ << std::setprecision(10);
     if (checkpoint.resume)
       return;
@@ -309,12 +308,17 @@ private:
                    coupling::CoupledRunProgress& progress)
   {
     problem.visit_state(a);
+    if (a.loading() && problem.adaptive_region()) // the continuum may be the grown region's
+      for (auto& probe : probes_)
+        probe = problem.continuum().make_probe(probe.point, "FEM/Measurements/deflection points");
     progress.visit_state(a);
     dem::StateGroup group(a, "output");
     a.io("load", load_);
     a.io("load_displacement", load_displacement_);
     if (a.loading() && load_.size() != load_displacement_.size())
       throw dem::InputError(a.where() + "load: not as long as 'load_displacement'");
+    if (problem.adaptive_region()) // the growths whose jumps history.csv holds
+      a.io("growth_events_written", events_written_);
     long history_bytes = a.loading() ? 0 : long(history_file_.durable_size());
     a.io("history_bytes", history_bytes);
     vtu_.visit_state(a);
@@ -376,8 +380,7 @@ void add_growth_summary(nlohmann::json& j, const CoupledProblem& p)
                       {"energy_jump", e.energy_jump()},
                       {"energy_jump_ratio", e.energy_jump_ratio()},
                       {"strain_energy", e.strain_energy},
-                      {"time_step", e.time_step},
-                      {"wall_seconds", e.wall_seconds}});
+                      {"time_step", e.time_step}});
     largest = std::max(largest, e.energy_jump_ratio());
   }
   j["region_growth_events"] = events;
@@ -459,8 +462,9 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   j["mode"] = "coupled";
   j["n_particles"] = p.n_particles();
   j["n_interface_particles"] = p.n_interface_particles();
-  j["n_fe_dofs"] = fe.n_dofs();
-  j["n_fe_cells"] = fe.n_cells();
+  // the continuum now: an adaptive region's growth replaces it
+  j["n_fe_dofs"] = p.continuum().n_dofs();
+  j["n_fe_cells"] = p.continuum().n_cells();
   j["time_step"] = p.time_step();
   j["particle_time_step"] = p.particle_time_step();
   j["fe_time_step"] = p.fe_time_step();

@@ -348,6 +348,31 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
   largest_utilisation_ = std::max(largest_utilisation_, max_utilisation_);
 }
 
+void AdaptiveRegion::visit_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "region");
+  auto bytes = [&](const std::string& name, std::vector<char>& v)
+  {
+    std::vector<std::uint8_t> raw(v.begin(), v.end());
+    a.io_sized(name, raw);
+    v.assign(raw.begin(), raw.end());
+  };
+  auto floats = [&](const std::string& name, std::vector<float>& v)
+  {
+    std::vector<double> wide(v.begin(), v.end());
+    a.io_sized(name, wide);
+    v.assign(wide.begin(), wide.end());
+  };
+  bytes("cells", region_);
+  bytes("continuum", continuum_);
+  bytes("anchored", anchored_);
+  bytes("bond_marked", bond_marked_);
+  floats("utilisation", utilisation_);
+  floats("averaged_utilisation", averaged_);
+  a.io("max_utilisation", max_utilisation_);
+  a.io("largest_utilisation", largest_utilisation_);
+}
+
 AdaptiveRegion::Proposal AdaptiveRegion::propose() const
 {
   Proposal p;

@@ -39,6 +39,7 @@
 #include "coupling/handshake.h"
 #include "coupling/packing_strength.h"
 #include "coupling/region_volume.h"
+#include "dem/core/state_archive.h"
 #include <map>
 #include <memory>
 #include <string>
@@ -149,6 +150,9 @@ public:
   /// The region's cells (one char per grid cell: i fastest, then j, then k).
   const std::vector<char>& cells() const { return region_; }
   void set_cells(std::vector<char> cells);
+  /// Checkpoints: the region's cells and the last measure (a restored region of other cells is
+  /// the caller's to rebuild on).
+  void visit_state(dem::StateArchive& a);
 
 private:
   std::size_t cell_index(int i, int j, int k) const

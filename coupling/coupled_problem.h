@@ -197,6 +197,14 @@ public:
     std::size_t particles = 0; ///< the region the growth would have made
   };
   const GrowthCap& growth_cap() const { return growth_cap_; }
+  /// The run loop's growth checks (coupled_run.cc), kept here for checkpoints.
+  struct GrowthChecks
+  {
+    long last_step = 0;     ///< the step count at the last check
+    long broken_bonds = 0;  ///< the broken bonds then
+    long planned_steps = 0; ///< the run's steps as counted anew at the last growth; 0: none
+  };
+  GrowthChecks& growth_checks() { return growth_checks_; }
   /// Fracture energy of the whole run (the particle models before each growth included), J.
   double fracture_energy() const;
 
@@ -274,6 +282,10 @@ private:
   std::vector<std::int32_t> packing_of_; ///< each particle's index in the envelope's packing
   std::vector<GrowthEvent> growth_events_;
   GrowthCap growth_cap_;
+  GrowthChecks growth_checks_;
+  /// Checkpoints of an adaptive run: the region, the events, the carried works; a region that
+  /// grew since the start is rebuilt before the models' state is read (region_growth.cc).
+  void visit_adaptive_state(dem::StateArchive& a);
   /// The works of the models before the last growth, summed at the growth (J): the energies
   /// reported add them to the current models' own.
   struct CarriedWork

@@ -27,9 +27,6 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   // the steps to the end time, rounded so that t_end itself is reached
   long planned =
       std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / problem.time_step() - 1e-9))));
-  if (problem.adaptive_region() && (s.checkpoint_interval > 0 || s.checkpoint_wall_interval > 0))
-    throw std::runtime_error("Output/checkpoint interval: checkpoints of a run with an adaptive "
-                             "particle region are not available yet");
   const long record_every = std::max(1L, s.record_interval);
 
   CoupledRunProgress progress;
@@ -37,12 +34,16 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   observer.on_start(problem, progress); // a resumed run restores the state here
   const double coupling_before = problem.coupling_seconds();
   const long first = problem.steps();
+  if (problem.growth_checks().planned_steps > 0) // a resumed run whose region grew
+    planned = problem.growth_checks().planned_steps;
 
   CoupledRunResult r;
   r.stop_reason = planned == s.max_steps ? "max steps" : "end time";
   // an adaptive region is checked at every record, and while bonds break every few steps
   const AdaptiveRegion* adaptive = problem.adaptive_region();
-  long last_check = first, broken_at_check = 0;
+  auto& checks = problem.growth_checks(); // a resumed run's from the checkpoint
+  long& last_check = checks.last_step;
+  long& broken_at_check = checks.broken_bonds;
   auto broken_bonds = [&]
   {
     const auto* solver = problem.particle_solver();
@@ -78,6 +79,7 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
           const long left =
               long(std::ceil((s.end_time - problem.time()) / problem.time_step() - 1e-9));
           planned = std::min(s.max_steps, n + 1 + std::max(1L, left));
+          checks.planned_steps = planned;
         }
       }
       bool at_rest = false;

@@ -20,11 +20,10 @@ void CoupledProblem::gather_state()
 void CoupledProblem::visit_state(dem::StateArchive& a)
 {
   if (adaptive_)
-    throw dem::InputError("Output/checkpoint interval: checkpoints of a run with an adaptive "
-                          "particle region are not available yet");
-  solver_->visit_state(a); // /particles/, /bonds/, /solver/ (rank 0's)
-  fe_->visit_state(a);     // /fe/
-  visit_tie(a);            // /coupling/
+    visit_adaptive_state(a); // first: the models below are the region's
+  solver_->visit_state(a);   // /particles/, /bonds/, /solver/ (rank 0's)
+  fe_->visit_state(a);       // /fe/
+  visit_tie(a);              // /coupling/
 }
 
 void CoupledProblem::scatter_state()
