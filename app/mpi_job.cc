@@ -34,8 +34,8 @@ int MpiJob::fail(const std::string& line) const
     // every rank that fails enters the barrier: it completes when all have failed
     MPI_Request all_failed;
     MPI_Ibarrier(failures_, &all_failed);
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::duration<double>(fail_grace_seconds);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(fail_grace_seconds);
     int done = 0;
     while (MPI_Test(&all_failed, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done &&
            std::chrono::steady_clock::now() < deadline)

@@ -162,10 +162,9 @@ std::vector<std::string> OutputFolder::previous_results(const fs::path& dir)
     }
   }
   // A folder written before the list: dembridge's fixed names and the ParaView series.
-  for (const char* name :
-       {"summary.json", "summary.json.part", "parameters.prm", "history.csv", "history.csv.part",
-        "particle_stress.csv", "particle_stress.csv.part", "cracks.csv", "comparison.csv",
-        "comparison.png"})
+  for (const char* name : {"summary.json", "summary.json.part", "parameters.prm", "history.csv",
+                           "history.csv.part", "particle_stress.csv", "particle_stress.csv.part",
+                           "cracks.csv", "comparison.csv", "comparison.png"})
     files.insert(name);
   if (fs::is_directory(dir))
     for (const auto& entry : fs::directory_iterator(dir))
