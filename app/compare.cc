@@ -314,8 +314,6 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o)
 
 int run_compare(const CompareOptions& o)
 {
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-    throw std::runtime_error("compare: runs on one MPI rank (it starts the runs itself)");
   const std::string case_name = fs::path(o.case_file).filename().string();
   auto in_case = [&](const std::string& msg) { return case_name + ": " + msg; };
 

@@ -4,7 +4,8 @@
 # uncaught exception 134), exactly one line on stderr, ended by a newline, matching REGEX, and
 # nothing that looks like a finished result in OUTDIR (no summary.json, no complete-looking
 # history.csv, no staging folder left behind; for `verify` also no comparison files and no DEM
-# or FE summary: inputs are checked first).
+# or FE summary: inputs are checked first); indeed no OUTDIR at all: a refused command creates
+# nothing.
 set -u
 exe=$1 out=$2 regex=$3
 shift 3
@@ -23,4 +24,5 @@ printf '%s\n' "$err" | grep -qE -- "$regex" || { echo "FAIL: stderr does not mat
 for f in summary.json history.csv comparison.csv comparison.png dem/summary.json fem/summary.json .partial; do
   [ ! -e "$out/$f" ] || { echo "FAIL: $out/$f was written"; exit 1; }
 done
+[ ! -e "$out" ] || { echo "FAIL: the refused command left the folder $out"; ls -la "$out"; exit 1; }
 echo "ok"
