@@ -441,6 +441,13 @@ TEST(MicrostructureInput, RefusedWithOneLine)
     expect(c, "Microstructure/column diameter: ", "below two particle diameters");
     c.microstructure.grains.diameter = 50 * radius;
     expect(c, "Microstructure/column diameter: ", "above the specimen's width");
+    c.microstructure.grains.diameter = 12 * radius;
+    c.microstructure.grains.granular_thickness = 6 * radius;
+    c.microstructure.grains.granular_diameter = 3 * radius;
+    expect(c, "Microstructure/granular grain diameter: ", "below two particle diameters");
+    c.microstructure.grains.granular_diameter = 6 * radius;
+    c.microstructure.grains.granular_thickness = 12 * radius;
+    expect(c, "Microstructure/granular layer thickness: ", "leaves no column");
   }
   {
     CaseConfig c = with_weak_planes(3, 0.5);
