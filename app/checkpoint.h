@@ -28,8 +28,8 @@ namespace dembridge::app
 /// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
 /// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
 /// Version 4: FE dynamics runs store running summaries of their energies and zero crossings
-/// instead of the series (one value a step).
-inline constexpr int checkpoint_format_version = 4;
+/// instead of the series (one value a step). Version 5: the bonds' classes (`bond_class`).
+inline constexpr int checkpoint_format_version = 5;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
 struct CheckpointSettings

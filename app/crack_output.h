@@ -3,15 +3,20 @@
 //  - cracks.csv: one row per broken bond: time (s), bond midpoint x y z (m), bond axis x y z,
 //    mode (tension | shear: which stress governed), released energy (J: the strain energy of a
 //    brittle bond, the energy a softening bond dissipated), particle ids a b and the bond index;
+//    with a microstructure (dem/microstructure/) also the bond's class (intra_grain,
+//    grain_boundary, weak_plane) and, with grains, whether the crack ran between two grains
+//    (intergranular) or through one (transgranular);
 //    written under a temporary name and renamed when the run completes;
 //  - cracks.pvd + cracks_NNNNNN.vtu: at every snapshot, every crack so far as a point at its bond
 //    midpoint (ParaView: Glyph with the `axis` vector): time, energy, axis, particle_a,
-//    particle_b and bond (Int64) as point data, mode (UInt8: 0 tension, 1 shear) as cell data
-//    (particle_vtu_file.h);
+//    particle_b and bond (Int64) as point data, mode (UInt8: 0 tension, 1 shear) and with a
+//    microstructure class (UInt8, as the bonds' files) as cell data (particle_vtu_file.h);
 //  - summary.json: n_broken_bonds, broken_bonds_tension, broken_bonds_shear, the broken-bond
 //    fraction per stress-layer slab (damage_layers) and the peak of the load history (peak_stress
 //    and strain_at_peak for uniaxial tests, peak_load for three-point bending), from
-//    dem/measurements/failure_measurements.h.
+//    dem/measurements/failure_measurements.h; with a microstructure bonds_per_class and
+//    broken_bonds_per_class, with grains n_grains and broken_bonds_intergranular /
+//    broken_bonds_transgranular.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/solvers/explicit_solver.h"
@@ -41,9 +46,15 @@ public:
   void visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s);
 
 private:
+  /// Reads the class and grains of cracks_[from...] from the solver's stores.
+  void classify(const dem::ExplicitSolver& s, std::size_t from);
+
   std::filesystem::path dir_;
   bool write_vtu_;
   std::vector<dem::CrackEvent> cracks_;
+  // per crack, with a microstructure: the bond's class; with grains: 1 between two grains
+  std::vector<std::uint8_t> classes_, intergranular_;
+  bool has_classes_ = false, has_grains_ = false;
   std::vector<std::pair<double, std::string>> files_;
 };
 

@@ -1,6 +1,7 @@
 #include "dem_parameters.h"
 #include "contact_parameters.h"
 #include "damage_parameters.h"
+#include "microstructure_parameters.h"
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -208,6 +209,7 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.leave_subsection();
 
   declare_damage_parameters(prm);
+  declare_microstructure_parameters(prm);
 }
 
 void declare_group_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
@@ -466,6 +468,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
   prm.leave_subsection();
   c.damage = parse_damage_parameters(prm);
+  c.microstructure = parse_microstructure_parameters(prm, c.bonds.material, c.damage);
   return c;
 }
 

@@ -81,6 +81,9 @@ public:
   /// Broken bonds whose failure was governed by tension / by shear.
   long broken_bonds(CrackMode mode) const { return broken_by_mode_[int(mode)]; }
   const std::vector<Load>& loads() const { return loads_; }
+  /// The stores the solver advances; bond indices are in its order (CrackEvent::bond).
+  const ParticleStore& particles() const { return p_; }
+  const BondStore& bonds() const { return b_; }
 
   /// Sum over the group of the particle forces of the last step: on constrained DOFs this is
   /// the support reaction, elsewhere the unbalanced force.

@@ -211,7 +211,7 @@ TEST(Checkpoint, OtherFormatVersionIsRefused)
   app::write_checkpoint(file, header(), [&](dem::StateArchive& a) { f.visit(a); });
   set_format_version(file, app::checkpoint_format_version + 1);
   const std::string what = error_of([&] { app::read_checkpoint_header(file); });
-  EXPECT_NE(what.find("checkpoint format version 5, this dembridge reads version 4 only"),
+  EXPECT_NE(what.find("checkpoint format version 6, this dembridge reads version 5 only"),
             std::string::npos)
       << what;
   EXPECT_EQ(what.rfind(file.string(), 0), 0u) << what;
