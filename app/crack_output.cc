@@ -1,11 +1,11 @@
 #include "crack_output.h"
 #include "checkpoint.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
 #include "particle_vtu_file.h"
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 
 namespace dembridge::app
@@ -70,9 +70,7 @@ void CrackOutput::finish() const
 {
   const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
   {
-    std::ofstream out(part);
-    if (!out)
-      throw std::runtime_error(file.string() + ": cannot write");
+    dem::OutputFile out(part); // failures name the file and the reason
     out << "time,x,y,z,axis_x,axis_y,axis_z,mode,energy,particle_a,particle_b,bond\n"
         << std::setprecision(10);
     for (const auto& c : cracks_)
@@ -80,8 +78,7 @@ void CrackOutput::finish() const
           << ',' << c.axis.x() << ',' << c.axis.y() << ',' << c.axis.z() << ','
           << (c.mode == dem::CrackMode::shear ? "shear" : "tension") << ',' << c.energy << ','
           << c.a << ',' << c.b << ',' << c.bond << '\n';
-    if (!out)
-      throw std::runtime_error(file.string() + ": write failed");
+    out.close();
   }
   std::filesystem::rename(part, file);
   if (write_vtu_)
