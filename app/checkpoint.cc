@@ -433,7 +433,7 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
         throw std::runtime_error(tmp.string() + ": cannot write the format version" +
                                  hdf5::with_reason(hdf5::hdf5_reason()));
     }
-    Hdf5Archive archive(h.get(), false, file.filename().string());
+    Hdf5Archive archive(h.get(), false, tmp.string()); // write errors name the file
     CheckpointHeader copy = header;
     visit_header(archive, copy, true);
     if (written == kill_at)
