@@ -3,6 +3,7 @@
 #include "coupling/measurements.h"
 #include "crack_output.h"
 #include "dem/core/history_file.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/measurements.h"
 #include "dem_parameters.h"
 #include "fem/fem_case.h"
@@ -14,7 +15,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 
@@ -93,8 +93,7 @@ public:
     if (!root_)
       return;
     // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
-    history_file_.open(dir / "history.csv.part", checkpoint.resume,
-                       (dir / "history.csv").string());
+    history_file_.open(dir / "history.csv.part", checkpoint.resume);
     history_ << std::setprecision(10);
     if (checkpoint.resume)
       return;
@@ -141,6 +140,7 @@ public:
                            a.io("cycle", cycle);
                            cycle_ = unsigned(cycle);
                          });
+    first_step_ = problem.steps();
     if (!root_)
       return;
     std::printf("resumed from %s: step %ld, t = %.6g s\n", checkpoint_.file.string().c_str(),
@@ -233,7 +233,9 @@ public:
                 "%.2e, coupling %.0f %% of the time\n",
                 100 * fraction, problem.steps(), problem.time(), rate, eta,
                 problem.energies().balance_error(),
-                100 * problem.coupling_seconds() / std::max(1e-12, double(problem.steps()) / rate));
+                // the wall time of this process's steps (a resumed run's since its checkpoint)
+                100 * problem.coupling_seconds() /
+                    std::max(1e-12, double(problem.steps() - first_step_) / rate));
     std::fflush(stdout);
   }
 
@@ -255,7 +257,7 @@ public:
     if (!write_vtu_)
       return;
     vtu_.finish();
-    std::ofstream pvd(dir_ / "coupled.pvd");
+    dem::OutputFile pvd(dir_ / "coupled.pvd"); // failures name the file and the reason
     pvd << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n"
@@ -277,8 +279,7 @@ public:
       entry(2, fe_files_[k].second, "continuum");
     }
     pvd << "  </Collection>\n</VTKFile>\n";
-    if (!pvd)
-      throw std::runtime_error((dir_ / "coupled.pvd").string() + ": write failed");
+    pvd.close();
   }
 
 private:
@@ -322,8 +323,9 @@ private:
   ParticleVtuSeries vtu_;
   CrackOutput cracks_;
   dem::HistoryFile history_file_;
-  std::ofstream& history_ = history_file_.stream();
+  std::ostream& history_ = history_file_.stream();
   unsigned int cycle_ = 0;
+  long first_step_ = 0; ///< the step this process started at (a resumed run's checkpoint's)
   std::vector<std::pair<double, std::string>> fe_files_;
   int load_group_ = -1;
   dem::Vec3 load_direction_ = dem::Vec3::UnitZ();

@@ -1,11 +1,11 @@
 #include "crack_output.h"
 #include "checkpoint.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
 #include "particle_vtu_file.h"
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <set>
 
@@ -91,9 +91,7 @@ void CrackOutput::finish() const
 {
   const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
   {
-    std::ofstream out(part);
-    if (!out)
-      throw std::runtime_error(file.string() + ": cannot write");
+    dem::OutputFile out(part); // failures name the file and the reason
     out << "time,x,y,z,axis_x,axis_y,axis_z,mode,energy,particle_a,particle_b,bond"
         << (has_classes_ ? ",class" : "") << (has_grains_ ? ",grains" : "") << '\n'
         << std::setprecision(10);
@@ -110,8 +108,7 @@ void CrackOutput::finish() const
         out << ',' << (intergranular_[k] ? "intergranular" : "transgranular");
       out << '\n';
     }
-    if (!out)
-      throw std::runtime_error(file.string() + ": write failed");
+    out.close();
   }
   std::filesystem::rename(part, file);
   if (write_vtu_)

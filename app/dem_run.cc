@@ -3,6 +3,7 @@
 #include "contact_output.h"
 #include "crack_output.h"
 #include "dem/core/history_file.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/measurements/measurements.h"
 #include "dem/measurements/particle_stress.h"
@@ -21,7 +22,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -50,9 +50,7 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
 {
   const std::filesystem::path part = file.string() + ".part";
   {
-    std::ofstream out(part);
-    if (!out)
-      throw std::runtime_error(file.string() + ": cannot write");
+    dem::OutputFile out(part); // failures name the file and the reason
     out << "id,x,y,z,radius,s_xx,s_yy,s_zz,s_yz,s_xz,s_xy\n" << std::setprecision(10);
     // rows in the user's particle numbering (the stores are in spatial order, renumbering.h)
     std::vector<std::size_t> by_id(p.size());
@@ -67,8 +65,7 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
           << t(0, 0) << ',' << t(1, 1) << ',' << t(2, 2) << ',' << 0.5 * (t(1, 2) + t(2, 1)) << ','
           << 0.5 * (t(0, 2) + t(2, 0)) << ',' << 0.5 * (t(0, 1) + t(1, 0)) << '\n';
     }
-    if (!out)
-      throw std::runtime_error(file.string() + ": write failed");
+    out.close();
   }
   std::filesystem::rename(part, file);
 }
@@ -85,7 +82,7 @@ public:
     // Written under a temporary name and renamed when the run completes, so an interrupted
     // run never leaves a history that looks complete.
     // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
-    history_file_.open(dir / "history.csv.part", checkpoint.resume, history_path_.string());
+    history_file_.open(dir / "history.csv.part", checkpoint.resume);
     if (!checkpoint.resume)
       history_ << history_header(model, contacts_);
     history_ << std::setprecision(10);
@@ -237,7 +234,7 @@ private:
   std::filesystem::path dir_;
   std::filesystem::path history_path_;
   dem::HistoryFile history_file_;
-  std::ofstream& history_ = history_file_.stream();
+  std::ostream& history_ = history_file_.stream();
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
   std::vector<double> du_, force_, fixed_force_;
   std::vector<std::pair<double, double>> kinetic_share_;
@@ -355,7 +352,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["steps"] = r.steps;
     j["simulated_time"] = r.time;
     j["bond_updates_per_second"] =
-        r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
+        r.wall_seconds > 0 ? double(r.steps_made) * double(model.bonds.size()) / r.wall_seconds
+                           : 0.0;
     j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
                    {"damping", r.energy.damping},     {"external_work", r.energy.external},
                    {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},

@@ -7,6 +7,7 @@
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "checkpoint.h"
+#include "dem/core/output_file.h"
 #include "dem/core/progress.h"
 #include "dem/core/types.h"
 #include "dem_run.h"
@@ -31,7 +32,6 @@
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 namespace fs = std::filesystem;
@@ -44,10 +44,9 @@ void write_summary(const fs::path& dir, const nlohmann::json& j)
 {
   const fs::path tmp = dir / "summary.json.part";
   {
-    std::ofstream out(tmp);
+    dembridge::dem::OutputFile out(tmp); // failures name the file and the reason
     out << j.dump(2) << '\n';
-    if (!out)
-      throw std::runtime_error((dir / "summary.json").string() + ": cannot write");
+    out.close();
   }
   fs::rename(tmp, dir / "summary.json");
 }

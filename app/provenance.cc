@@ -1,10 +1,10 @@
 #include "provenance.h"
+#include "dem/core/output_file.h"
 #include "version.h"
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <deal.II/base/multithread_info.h>
-#include <fstream>
 #include <sstream>
 #include <unistd.h>
 
@@ -123,10 +123,9 @@ void write_parameters_file(const dealii::ParameterHandler& prm, const fs::path& 
       "\n"
       "# Rerun: dembridge run " +
       file.filename().string() + "\n";
-  std::ofstream out(file);
+  dem::OutputFile out(file); // failures name the file and the reason
   out << parameters_file_text(prm, fs::absolute(case_file).parent_path(), header);
-  if (!out)
-    throw std::runtime_error(file.string() + ": cannot write");
+  out.close();
 }
 
 std::string utc_now()
