@@ -64,6 +64,9 @@ public:
       return true;
     }
     Frame& parent = open_.back();
+    // why: every frame holds its path, and no case nests subsections this deep
+    if (open_.size() > 16)
+      fail_at_key("nested deeper than any subsection (16 levels)");
     if (parent.repeated)
       fail("subsection '" + printable(join(parent.path, parent.key)) +
            "' is given twice (JSON would keep only the last; give each subsection once)");
