@@ -198,6 +198,9 @@ void set_entries(dealii::ParameterHandler& prm, const Json& object, std::vector<
       }
       text = value["value"].get<std::string>();
     }
+    else if (prm.subsection_path_exists({key}))
+      throw std::runtime_error(
+          where + ": a subsection, given a value (write it as an object: {\"key\": value, ...})");
     else
       text = value.get<std::string>();
     // as deal.II's .prm reader does: blanks around a value are not part of it
