@@ -12,6 +12,9 @@
 //         them); $Elements: blocks "dim tag type count", each element its tag and the nodes of
 //         its type, every node defined, counts summing to the declared total (token by token,
 //         as gmsh's format is whitespace-separated: MSH file format 4.1, gmsh manual 10.1).
+// A .geo script, an empty file, a file that does not begin with $MeshFormat and binary data are
+// refused first (deal.II says only that "the string <//> is not recognized"); text quoted from
+// the file is cut to 40 printable characters, never a binary file's bytes.
 #include "mesh.h"
 
 #include <filesystem>
