@@ -3,6 +3,7 @@
 #include "damage_parameters.h"
 #include "microstructure_parameters.h"
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -295,6 +296,16 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     s.remove_box_max = get_vec3(prm, "remove box max");
     if (s.kind == K::file && s.file.empty())
       throw dem::InputError("Particles/file: source = file needs a file name");
+    // the path tried, absolute: a relative one is resolved against the working directory,
+    // which `dembridge run` sets to the case file's folder
+    if (s.kind == K::file)
+    {
+      const auto tried = std::filesystem::absolute(s.file).lexically_normal();
+      std::error_code ec;
+      if (!std::filesystem::exists(tried, ec))
+        throw dem::InputError("Particles/file: '" + s.file + "' does not exist (looked for " +
+                              tried.string() + ")");
+    }
   }
   prm.leave_subsection();
 

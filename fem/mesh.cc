@@ -61,6 +61,10 @@ std::string resolve_mesh_file(const std::string& file)
   namespace fs = std::filesystem;
   if (fs::is_regular_file(file))
     return file;
+  std::error_code ec;
+  if (fs::is_directory(file, ec))
+    throw std::runtime_error("FEM/Mesh/file: '" + file +
+                             "' is a directory, not a mesh file (give the .msh file)");
   // the paths tried, absolute: a relative path is resolved against the working directory,
   // which `dembridge run` sets to the case file's folder
   std::string tried = fs::absolute(file).lexically_normal().string();

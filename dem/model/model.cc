@@ -77,6 +77,9 @@ Model build_model(const CaseConfig& c)
       add_bond(p, m.bonds, c.bonds.material, i, j);
     mark_reference_configuration(p);
   }
+  if (m.bonds.size() == 0 && !c.contacts.enabled() && p.size() == 1)
+    throw InputError("Particles: the case has one particle, and a bonded model needs at least "
+                     "two (no bond can form)");
   if (m.bonds.size() == 0 && !c.contacts.enabled()) // contacts alone make a granular model
     throw InputError("Bonds: no bond was formed (contact radius multiplier " +
                      std::to_string(c.bonds.contact_radius_multiplier) +
