@@ -99,11 +99,12 @@ OutputFolder::~OutputFolder()
 {
   if (writer_ && !committed_)
   {
-    if (staged_ && !resumed_)
-    {
-      std::error_code ignored;
+    // A run that wrote a checkpoint before it failed keeps its staged files: --resume
+    // continues from that checkpoint and needs them (a fresh run into the folder is refused
+    // while the checkpoint is there).
+    std::error_code ignored;
+    if (staged_ && !resumed_ && !fs::exists(dir_ / "checkpoint.h5", ignored))
       fs::remove_all(staging_, ignored);
-    }
     remove_created_folders();
   }
   if (lock_fd_ >= 0)

@@ -9,7 +9,8 @@
 // the user's is touched. A run that fails removes its staging folder and leaves DIR exactly as
 // it was (a folder it created is removed again); a killed run leaves DIR as it was plus the
 // hidden .partial, which the next run clears (or, with --resume, continues: checkpoint.h). A
-// resumed run that fails keeps .partial as it was, for the next --resume.
+// resumed run that fails keeps .partial as it was, for the next --resume, and so does a run that
+// fails after writing a checkpoint.
 //
 // While a run uses DIR it holds an exclusive lock on the folder (flock on the directory, taken
 // by rank 0): a second run into DIR is refused at once. The operating system releases the lock
@@ -28,8 +29,9 @@ public:
   /// that another run holds, or a path that is a file. Collective on @p comm: rank 0 does the
   /// file work, every rank throws its error.
   OutputFolder(const std::filesystem::path& dir, MPI_Comm comm);
-  /// A run that was not committed: removes the staging folder (unless resumed) and the folder
-  /// itself if this run created it and it is empty; releases the lock.
+  /// A run that was not committed: removes the staging folder (unless resumed, or a checkpoint
+  /// was written) and the folder itself if this run created it and it is empty; releases the
+  /// lock.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;

@@ -28,6 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checkpoint_resume import fail  # noqa: E402
 
 FILE_LIMIT = 4096  # bytes
+CHECKPOINT_LIMIT = 200000  # above the test case's checkpoint (125 kB), below its history (360 kB)
 
 
 def main():
@@ -87,6 +88,23 @@ def main():
                       file_limit=FILE_LIMIT),
                   os.path.join(folder, ".partial", "history.csv.part"), "File too large",
                   "%d-byte file limit, no ParaView output" % FILE_LIMIT)
+
+    # a run that fails after writing a checkpoint keeps its staged files (a fresh run into the
+    # folder is refused while the checkpoint is there), and --resume then completes it: a limit
+    # above the checkpoint's size that history.csv crosses after the first checkpoints
+    folder = os.path.join(out, "limit_after_checkpoint")
+    no_vtu = ["--set", "Output/write vtu=false", "--set", "Output/history interval=1"]
+    failed_naming(run(folder, no_vtu, file_limit=CHECKPOINT_LIMIT),
+                  os.path.join(folder, ".partial", "history.csv.part"), "File too large",
+                  "%d-byte file limit after a checkpoint" % CHECKPOINT_LIMIT)
+    if not os.path.exists(os.path.join(folder, "checkpoint.h5")) or \
+            not os.path.exists(os.path.join(folder, ".partial", "history.csv.part")):
+        fail("the run that failed after its checkpoint did not keep its checkpoint and staged "
+             "files: %s" % sorted(os.listdir(folder)))
+    r = run(folder, no_vtu, resume=True)
+    if r.returncode != 0 or not os.path.exists(os.path.join(folder, "summary.json")):
+        fail("--resume after the failure did not complete: %s %s" % (r.returncode, r.stderr))
+    print("  resumed after the failure: ok")
     print("ok")
 
 
