@@ -10,8 +10,8 @@
 
 namespace dembridge::app
 {
-CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu)
-    : dir_(std::move(dir)), write_vtu_(write_vtu)
+CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu, bool failure_law)
+    : dir_(std::move(dir)), write_vtu_(write_vtu), failure_law_(failure_law)
 {
 }
 
@@ -36,7 +36,7 @@ void CrackOutput::visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s
 
 void CrackOutput::snapshot(double time, long step)
 {
-  if (!write_vtu_)
+  if (!write_vtu_ || !failure_law_)
     return;
   const std::size_t n = cracks_.size();
   std::vector<dem::Vec3> points(n), axis(n);
@@ -68,6 +68,8 @@ void CrackOutput::snapshot(double time, long step)
 
 void CrackOutput::finish() const
 {
+  if (!failure_law_)
+    return;
   const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
   {
     std::ofstream out(part);
@@ -101,6 +103,14 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
   j["broken_bonds_tension"] = tension;
   j["broken_bonds_shear"] = long(cracks.size()) - tension;
   j["broken_bond_fraction"] = b.size() > 0 ? double(cracks.size()) / double(b.size()) : 0.0;
+  if (!cracks.empty())
+  {
+    const auto& first = cracks.front();
+    j["first_crack"] = {
+        {"time", first.time},
+        {"position", {first.midpoint.x(), first.midpoint.y(), first.midpoint.z()}},
+        {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
+  }
   if (layers > 0)
   {
     const auto [lo, hi] = dem::reference_extent(p);

@@ -14,6 +14,7 @@
 #include "memory_guard.h"
 #include "output_folder.h"
 #include "provenance.h"
+#include "result_warnings.h"
 #include "verify.h"
 #include "version.h"
 #ifdef DEMBRIDGE_HAVE_FEM
@@ -174,6 +175,9 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     throw;
   }
   fs::current_path(cwd);
+  // a figure the run could not measure is named in "warnings", never a silent null
+  dembridge::app::flag_undefined_figures(
+      summary, dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   summary["case"] = fs::path(case_file).filename().string();
   summary["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
