@@ -465,7 +465,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   j["n_bonds"] = model.bonds.size();
   j["mean_coordination"] = mean_coordination;
   j["critical_time_step"] = model.critical.critical();
-  j["critical_time_step_eq48"] = model.critical.thesis_eq48;
+  if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
+    j["critical_time_step_eq48"] = model.critical.thesis_eq48;
   j["stop_reason"] = r.stop_reason;
   j["solver_seconds"] = r.wall_seconds;
   if (r.deflection)
@@ -483,8 +484,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         m.modulus_axis);
     const std::string axes = "xyz";
     // a specimen that broke: its final state is past the peak (a secant through the damage),
-    // so E comes from the elastic part of the curve and the final ratio keeps its own name
+    // so E comes from the elastic part of the curve and the final ratios keep their own names
     const bool broke = !cracks.empty();
+    const std::string nu = broke ? "final_poisson_ratio_" : "poisson_ratio_";
     j[broke ? "final_secant_modulus" : "youngs_modulus"] = a.youngs_modulus;
     j["axial_stress"] = a.stress;
     j["axial_strain"] = a.strain;
@@ -493,14 +495,14 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["gauge_length"] = a.gauge_length;
     for (int d = 0; d < 3; ++d)
       if (d != a.axis)
-        j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
+        j[nu + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
     if (a.strain == 0)
     {
       const std::string key = broke ? "final_secant_modulus" : "youngs_modulus";
       j[key] = nullptr;
       for (int d = 0; d < 3; ++d)
         if (d != a.axis)
-          j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = nullptr;
+          j[nu + axes[a.axis] + axes[d]] = nullptr;
       add_warning(j, key + ": undefined, and the Poisson's ratios with it: the end groups "
                            "(Measurements/modulus groups) did not move apart along " +
                            axes[a.axis] + " (axial strain 0); written as null");
