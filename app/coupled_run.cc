@@ -382,9 +382,9 @@ void check_boundaries_have_faces(const coupling::CoupledCase& c, CoupledProblem&
     const auto& g = c.settings.geometry;
     std::ostringstream s;
     s << key << ": boundary '" << name
-      << "' has no face left in the continuum: the particle region (" << g.particle_lo.x()
-      << ", " << g.particle_lo.y() << ", " << g.particle_lo.z() << " to " << g.particle_hi.x()
-      << ", " << g.particle_hi.y() << ", " << g.particle_hi.z()
+      << "' has no face left in the continuum: the particle region (" << g.particle_lo.x() << ", "
+      << g.particle_lo.y() << ", " << g.particle_lo.z() << " to " << g.particle_hi.x() << ", "
+      << g.particle_hi.y() << ", " << g.particle_hi.z()
       << ") covers it, and the continuum is cut out there, so nothing would act or be measured "
          "on it (move the particle region off that face, or load and measure the particles)";
     throw dem::InputError(s.str());
@@ -427,7 +427,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   check_boundaries_have_faces(c, p);
   nlohmann::json j;
   j["warnings"] = nlohmann::json::array(); // rank 0's (the particle model's)
-  on_root(comm, [&] { check_bond_coverage(p.model().particles, p.model().bonds.size(), c.particles, j); });
+  on_root(comm, [&]
+          { check_bond_coverage(p.model().particles, p.model().bonds.size(), c.particles, j); });
   if (root)
     for (const auto& w : coupling::damage_setup_warnings(c, p))
       add_warning(j, w);
@@ -581,8 +582,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     measured["n_bonds"] = model.bonds.size();
     // cracks (the particle region's): counts by mode, the first, broken fraction per slab
     if (failure_law)
-      add_crack_summary(measured, observer.cracks(), model.particles, model.bonds,
-                        m.stress_layers, m.stress_layer_axis);
+      add_crack_summary(measured, observer.cracks(), model.particles, model.bonds, m.stress_layers,
+                        m.stress_layer_axis);
     if (!observer.loads().empty()) // peak_load (N), deflection_at_peak (m)
       add_peak_load(measured, observer.loads(), observer.load_displacements());
     const auto& de = p.particle_solver()->energy();

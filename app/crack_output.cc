@@ -106,10 +106,9 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
   if (!cracks.empty())
   {
     const auto& first = cracks.front();
-    j["first_crack"] = {
-        {"time", first.time},
-        {"position", {first.midpoint.x(), first.midpoint.y(), first.midpoint.z()}},
-        {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
+    j["first_crack"] = {{"time", first.time},
+                        {"position", {first.midpoint.x(), first.midpoint.y(), first.midpoint.z()}},
+                        {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
   }
   if (layers > 0)
   {

@@ -503,9 +503,10 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       for (int d = 0; d < 3; ++d)
         if (d != a.axis)
           j[nu + axes[a.axis] + axes[d]] = nullptr;
-      add_warning(j, key + ": undefined, and the Poisson's ratios with it: the end groups "
-                           "(Measurements/modulus groups) did not move apart along " +
-                           axes[a.axis] + " (axial strain 0); written as null");
+      add_warning(j, key +
+                         ": undefined, and the Poisson's ratios with it: the end groups "
+                         "(Measurements/modulus groups) did not move apart along " +
+                         axes[a.axis] + " (axial strain 0); written as null");
     }
     else if (a.force == 0 && !broke)
       add_warning(j, "youngs_modulus: 0: the end groups (Measurements/modulus groups) carry no "
@@ -578,8 +579,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       // elastic part of the load-deflection curve, the records before the first bond broke (or
       // up to half the peak load when a weak bond broke earlier)
       j["final_secant_modulus"] = f.flexural_modulus;
-      const std::size_t n_fit =
-          std::max(flexural_intact, dem::records_before(flexural_load, 0.5));
+      const std::size_t n_fit = std::max(flexural_intact, dem::records_before(flexural_load, 0.5));
       const auto fit = dem::fit_flexural_modulus(
           {flexural_u.begin(), flexural_u.begin() + long(n_fit)},
           {flexural_load.begin(), flexural_load.begin() + long(n_fit)}, f);

@@ -8,8 +8,8 @@
 #include "coupled_parameters.h"
 #include "coupling/mesh_estimate.h"
 #endif
-#include <deal.II/base/mpi.h>
 #include <cstdio>
+#include <deal.II/base/mpi.h>
 #include <sstream>
 #include <sys/resource.h>
 
@@ -60,8 +60,7 @@ nlohmann::json check_memory(dealii::ParameterHandler& prm)
   {
     const coupling::ContinuumMeshSize fe =
         coupling::estimate_continuum_mesh(parse_coupled_case(prm));
-    const double fe_bytes =
-        fe.dofs * fem::bytes_per_dof(fem::ProblemKind::explicit_dynamics, 1);
+    const double fe_bytes = fe.dofs * fem::bytes_per_dof(fem::ProblemKind::explicit_dynamics, 1);
     const double bytes = estimate.bytes + fe_bytes;
     if (fe_bytes >= estimate.bytes && available > 0 && bytes > available)
     {

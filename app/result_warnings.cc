@@ -64,7 +64,10 @@ void flag_undefined_figures(nlohmann::json& summary, bool print)
   for (const auto& [path, v] : found)
     if (!warned_about(summary, path))
       add_warning(summary,
-                  path + ": undefined (" + (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") +
+                  path + ": undefined (" +
+                      (std::isnan(v) ? "nan"
+                       : v > 0       ? "inf"
+                                     : "-inf") +
                       "): the run could not measure it; written as null",
                   print);
 }

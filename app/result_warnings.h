@@ -5,8 +5,8 @@
 // printed ("dembridge: warning: ..." on stderr, and again under the figures `run` prints),
 // each line beginning with the key it concerns. A bonded specimen that forms no bond at all is
 // refused.
-#include "dem/model/case_config.h"
 #include "dem/core/particle_store.h"
+#include "dem/model/case_config.h"
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -25,8 +25,7 @@ void flag_undefined_figures(nlohmann::json& summary, bool print = true);
 /// multiplier that would bond) a bonded specimen, one with a failure law, that formed no bond;
 /// warns when a specimen with bonds has particles without any.
 void check_bond_coverage(const dem::ParticleStore& p, std::size_t n_bonds,
-                         const dem::CaseConfig& config, nlohmann::json& summary,
-                         bool print = true);
+                         const dem::CaseConfig& config, nlohmann::json& summary, bool print = true);
 
 /// An explicit run needs a positive end time: throws dem::InputError naming Simulation/end time.
 void check_explicit_end_time(double end_time);

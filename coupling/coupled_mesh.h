@@ -11,8 +11,8 @@
 // "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
 #include "coupling/handshake.h"
 #include "fem/mesh.h"
-#include <deal.II/distributed/tria.h>
 #include <array>
+#include <deal.II/distributed/tria.h>
 #include <vector>
 
 namespace dembridge::coupling
@@ -30,8 +30,7 @@ struct RemovedShare
 /// its cells are the products of the three lists.
 std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const Vec3& element_size,
                                                       double band_element_size,
-                                                      const Vec3& far_element_size,
-                                                      double growth);
+                                                      const Vec3& far_element_size, double growth);
 
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      double band_element_size,

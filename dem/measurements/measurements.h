@@ -9,9 +9,9 @@
 //    d, the lateral strain is the change of the distance between the particles within 1.5 r of
 //    the two faces normal to d divided by that distance, and nu_ad = -eps_d / eps_axial.
 // Signs: tension positive.
-#include "dem/model/groups.h"
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
+#include "dem/model/groups.h"
 
 namespace dembridge::dem
 {

@@ -20,9 +20,9 @@ BondCoverage bond_coverage(const ParticleStore& p)
   cells.for_each_pair(p.position,
                       [&](int a, int b)
                       {
-                        const double q = (p.position[std::size_t(b)] - p.position[std::size_t(a)])
-                                             .norm() /
-                                         (p.radius[std::size_t(a)] + p.radius[std::size_t(b)]);
+                        const double q =
+                            (p.position[std::size_t(b)] - p.position[std::size_t(a)]).norm() /
+                            (p.radius[std::size_t(a)] + p.radius[std::size_t(b)]);
                         nearest[std::size_t(a)] = std::min(nearest[std::size_t(a)], q);
                         nearest[std::size_t(b)] = std::min(nearest[std::size_t(b)], q);
                       });
