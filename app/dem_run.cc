@@ -276,7 +276,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
 {
   dem::CaseConfig config = parse_dem_case(prm);
   if (!config.run.static_solver)
-    check_explicit_end_time(config.run.end_time);
+    check_explicit_end_time(config.run.end_time, config.particles.save_file);
   const bool failure_law = config.damage.law.mode != dem::FailureMode::none;
   // per-bond force records feed the static run's figures only (ParaView bond files evaluate
   // each bond on demand)
@@ -299,6 +299,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   nlohmann::json j;
   j["warnings"] = nlohmann::json::array();
   check_bond_coverage(model.particles, model.bonds.size(), config, j);
+  if (!config.run.static_solver && config.run.end_time == 0) // check_explicit_end_time let it by
+    add_warning(j, "simulated_time: end time 0: the packing was written (Particles/save file) "
+                   "and nothing was simulated; the figures are those of the unloaded specimen");
   dem::RunResult r;
   std::vector<double> axial_du, axial_loaded, axial_fixed; // explicit runs: load history
   std::vector<double> flexural_load, flexural_u;

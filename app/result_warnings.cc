@@ -113,12 +113,14 @@ void check_bond_coverage(const dem::ParticleStore& p, std::size_t n_bonds,
   add_warning(summary, s.str(), print);
 }
 
-void check_explicit_end_time(double end_time)
+void check_explicit_end_time(double end_time, const std::string& save_file)
 {
-  if (!(end_time > 0))
-    throw dem::InputError("Simulation/end time: an explicit run needs a positive end time (the "
-                          "simulated time, s; " +
-                          std::string(end_time == 0 ? "0" : "this one") +
-                          " would take one step and measure nothing)");
+  if (end_time > 0 || (end_time == 0 && !save_file.empty()))
+    return;
+  throw dem::InputError("Simulation/end time: an explicit run needs a positive end time (the "
+                        "simulated time, s; " +
+                        std::string(end_time == 0 ? "0" : "this one") +
+                        " would take one step and measure nothing; 0 only writes a packing, with "
+                        "Particles/save file)");
 }
 } // namespace dembridge::app

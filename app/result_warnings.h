@@ -27,6 +27,7 @@ void flag_undefined_figures(nlohmann::json& summary, bool print = true);
 void check_bond_coverage(const dem::ParticleStore& p, std::size_t n_bonds,
                          const dem::CaseConfig& config, nlohmann::json& summary, bool print = true);
 
-/// An explicit run needs a positive end time: throws dem::InputError naming Simulation/end time.
-void check_explicit_end_time(double end_time);
+/// An explicit run needs a positive end time: throws dem::InputError naming Simulation/end time,
+/// unless the run only writes its packing (end time 0 with a Particles/save file @p save_file).
+void check_explicit_end_time(double end_time, const std::string& save_file = "");
 } // namespace dembridge::app
