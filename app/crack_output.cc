@@ -11,8 +11,8 @@
 
 namespace dembridge::app
 {
-CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu)
-    : dir_(std::move(dir)), write_vtu_(write_vtu)
+CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu, bool failure_law)
+    : dir_(std::move(dir)), write_vtu_(write_vtu), failure_law_(failure_law)
 {
 }
 
@@ -55,7 +55,7 @@ void CrackOutput::visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s
 
 void CrackOutput::snapshot(double time, long step)
 {
-  if (!write_vtu_)
+  if (!write_vtu_ || !failure_law_)
     return;
   const std::size_t n = cracks_.size();
   std::vector<dem::Vec3> points(n), axis(n);
@@ -89,6 +89,8 @@ void CrackOutput::snapshot(double time, long step)
 
 void CrackOutput::finish() const
 {
+  if (!failure_law_)
+    return;
   const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
   {
     dem::OutputFile out(part); // failures name the file and the reason
@@ -153,6 +155,13 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
       j["broken_bonds_intergranular"] = intergranular;
       j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
     }
+  }
+  if (!cracks.empty())
+  {
+    const auto& first = cracks.front();
+    j["first_crack"] = {{"time", first.time},
+                        {"position", {first.midpoint.x(), first.midpoint.y(), first.midpoint.z()}},
+                        {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
   }
   if (layers > 0)
   {

@@ -11,12 +11,14 @@
 //    midpoint (ParaView: Glyph with the `axis` vector): time, energy, axis, particle_a,
 //    particle_b and bond (Int64) as point data, mode (UInt8: 0 tension, 1 shear) and with a
 //    microstructure class (UInt8, as the bonds' files) as cell data (particle_vtu_file.h);
-//  - summary.json: n_broken_bonds, broken_bonds_tension, broken_bonds_shear, the broken-bond
-//    fraction per stress-layer slab (damage_layers) and the peak of the load history (peak_stress
-//    and strain_at_peak for uniaxial tests, peak_load for three-point bending), from
+//  - summary.json: n_broken_bonds, broken_bonds_tension, broken_bonds_shear, first_crack (time,
+//    position, mode), the broken-bond fraction per stress-layer slab (damage_layers) and the
+//    peak of the load history (peak_stress and strain_at_peak for uniaxial tests, peak_load and
+//    the midspan deflection at it for three-point bending), from
 //    dem/measurements/failure_measurements.h; with a microstructure bonds_per_class and
 //    broken_bonds_per_class, with grains n_grains and broken_bonds_intergranular /
 //    broken_bonds_transgranular.
+// Runs without a failure law write none of these.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/solvers/explicit_solver.h"
@@ -31,7 +33,8 @@ namespace dembridge::app
 class CrackOutput
 {
 public:
-  CrackOutput(std::filesystem::path dir, bool write_vtu);
+  /// Without a failure law (@p failure_law false) no bond breaks: no file is written.
+  CrackOutput(std::filesystem::path dir, bool write_vtu, bool failure_law);
   /// Takes the solver's new failures (its crack log only grows); call on every record.
   void update(const dem::ExplicitSolver& s);
   /// Writes cracks_NNNNNN.vtu with every crack so far.
@@ -51,6 +54,7 @@ private:
 
   std::filesystem::path dir_;
   bool write_vtu_;
+  bool failure_law_;
   std::vector<dem::CrackEvent> cracks_;
   // per crack, with a microstructure: the bond's class; with grains: 1 between two grains
   std::vector<std::uint8_t> classes_, intergranular_;
@@ -59,7 +63,7 @@ private:
 };
 
 /// summary.json: crack counts, and the broken fraction per slab when `layers` > 0 (the slabs of
-/// Measurements/stress layers over the specimen's reference extent).
+/// Measurements/stress layers over the specimen's reference extent); runs with a failure law.
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
                        int layer_axis);

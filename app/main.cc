@@ -16,6 +16,7 @@
 #include "mpi_job.h"
 #include "output_folder.h"
 #include "provenance.h"
+#include "result_warnings.h"
 #include "verify.h"
 #include "version.h"
 #ifdef DEMBRIDGE_HAVE_FEM
@@ -202,6 +203,9 @@ int run(const dembridge::app::MpiJob& job, const std::string& case_file,
     throw;
   }
   fs::current_path(cwd);
+  // a figure the run could not measure is named in "warnings", never a silent null
+  dembridge::app::flag_undefined_figures(
+      summary, dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   summary["case"] = fs::path(case_file).filename().string();
   summary["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

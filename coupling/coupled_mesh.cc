@@ -11,11 +11,10 @@ namespace dembridge::coupling
 {
 using namespace dealii;
 
-fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
-                                     const double band_element_size,
-                                     parallel::distributed::Triangulation<3>& tria,
-                                     std::vector<RemovedShare>* removed,
-                                     const Vec3& far_element_size, const double growth)
+std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const Vec3& element_size,
+                                                      const double band_element_size,
+                                                      const Vec3& far_element_size,
+                                                      const double growth)
 {
   if (!(element_size.minCoeff() > 0) || !(band_element_size > 0))
     throw std::runtime_error("Coupling/element size: must be positive");
@@ -23,7 +22,7 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
   const auto planes = h.band_planes();
   const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
   // Per axis: break points (domain ends and band planes), then equal cells in each interval.
-  std::vector<std::vector<double>> steps(3);
+  std::array<std::vector<double>, 3> steps;
   for (int d = 0; d < 3; ++d)
   {
     std::vector<double> points = {g.domain_lo[d], g.domain_hi[d]};
@@ -78,6 +77,20 @@ fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_siz
       steps[d].insert(steps[d].end(), cells.begin(), cells.end());
     }
   }
+  return steps;
+}
+
+fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
+                                     const double band_element_size,
+                                     parallel::distributed::Triangulation<3>& tria,
+                                     std::vector<RemovedShare>* removed,
+                                     const Vec3& far_element_size, const double growth)
+{
+  const auto& g = h.geometry();
+  const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
+  const auto steps_array =
+      coupled_mesh_steps(h, element_size, band_element_size, far_element_size, growth);
+  const std::vector<std::vector<double>> steps(steps_array.begin(), steps_array.end());
   Triangulation<3> box;
   GridGenerator::subdivided_hyper_rectangle(
       box, steps, Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),

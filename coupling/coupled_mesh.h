@@ -11,7 +11,9 @@
 // "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
 #include "coupling/handshake.h"
 #include "fem/mesh.h"
+#include <array>
 #include <deal.II/distributed/tria.h>
+#include <vector>
 
 namespace dembridge::coupling
 {
@@ -23,6 +25,12 @@ struct RemovedShare
   dealii::Point<3> vertex;
   double volume = 0; ///< m^3, sum over the removed cells at the vertex of V_cell / 8
 };
+
+/// The cell sizes along each axis (the mesh above before its particle-only cells are cut out):
+/// its cells are the products of the three lists.
+std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const Vec3& element_size,
+                                                      double band_element_size,
+                                                      const Vec3& far_element_size, double growth);
 
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      double band_element_size,
