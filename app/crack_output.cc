@@ -1,5 +1,6 @@
 #include "crack_output.h"
 #include "checkpoint.h"
+#include "dem/measurements/crack_orientation.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
 #include "particle_vtu_file.h"
@@ -122,7 +123,7 @@ void CrackOutput::finish() const
 
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
-                       int layer_axis)
+                       int layer_axis, int load_axis)
 {
   long tension = 0;
   for (const auto& c : cracks)
@@ -155,6 +156,26 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
       j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
       j["broken_bonds_intergranular"] = intergranular;
       j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+    }
+  }
+  if (load_axis >= 0 && b.has_failure())
+  {
+    // against the load axis, and against each axis (a confined test's splitting cracks open
+    // across the free axis, not the confined one: the angle from the load alone misses it)
+    const dem::CrackOrientation h = dem::crack_orientation(cracks, load_axis, 9);
+    auto& o = j["crack_orientation"];
+    o = {{"load_axis", std::string(1, "xyz"[h.axis])},
+         {"normal_angle_edges_deg", h.edges},
+         {"isotropic_fraction", h.isotropic_fraction},
+         {"counts", h.counts},
+         {"fraction", h.fraction},
+         {"mean_normal_angle_deg", h.mean_angle},
+         {"along_load_fraction", h.along_load_fraction}};
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const dem::CrackOrientation a = dem::crack_orientation(cracks, axis, 9);
+      o["from_axis"][std::string(1, "xyz"[axis])] = {
+          {"counts", a.counts}, {"fraction", a.fraction}, {"mean_normal_angle_deg", a.mean_angle}};
     }
   }
   if (layers > 0)

@@ -175,7 +175,9 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("modulus groups", "", Anything(),
                     "'fixed, loaded': end groups of a uniaxial test; gives youngs_modulus (thesis "
                     "eq. 64) and the Poisson's ratios from the bounding particles (eq. 65).");
-  prm.declare_entry("modulus axis", "x", Selection("x|y|z"), "Loading axis of the uniaxial test.");
+  prm.declare_entry("modulus axis", "x", Selection("x|y|z"),
+                    "Loading axis of the uniaxial test; summary.json's crack_orientation gives the "
+                    "angles of the crack normals from it.");
   prm.declare_entry("flexural groups", "", Anything(),
                     "'pin, roller, loaded, bottom': three-point bending groups (span along x, load "
                     "along z); gives flexural_modulus by thesis eq. 67 and 69.");

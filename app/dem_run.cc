@@ -342,7 +342,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     flexural_u = observer.flexural_deflections();
     cracks = observer.cracks().cracks();
     add_crack_summary(j, cracks, model.particles, model.bonds, config.measure.stress_layers,
-                      config.measure.stress_layer_axis);
+                      config.measure.stress_layer_axis, config.measure.modulus_axis);
     const auto [share_max, share_final] = observer.kinetic_share();
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;

@@ -45,14 +45,12 @@ void check_pressure_loads(const CaseConfig& c, Model& m)
     if (!std::isfinite(l.pressure) || !std::isfinite(l.ratio))
       throw InputError(where + "/pressure: must be finite");
     const std::string& ref = c.loads[k].ratio_load;
-    if (l.ratio == 0)
+    if (ref.empty())
     {
-      if (!ref.empty())
-        throw InputError(where + "/ratio load: set, but the ratio is 0");
+      if (l.ratio != 0)
+        throw InputError(where + "/ratio load: a ratio needs the load whose stress it follows");
       continue;
     }
-    if (ref.empty())
-      throw InputError(where + "/ratio load: a ratio needs the load whose stress it follows");
     const auto found =
         std::find_if(m.loads.begin(), m.loads.end(), [&](const Load& o) { return o.name == ref; });
     if (found == m.loads.end())

@@ -8,11 +8,14 @@
 //  - the continuum's closed form: under sigma_1 along x and sigma_2 = R sigma_1 along y (z free),
 //    eps_1 = (sigma_1 - nu_xy sigma_2) / E_x, so the apparent modulus sigma_1 / eps_1 is
 //    E_x / (1 - nu_xy R), with E_x and nu_xy from the uniaxial state A.
+#include "dem/measurements/crack_orientation.h"
 #include "dem/measurements/measurements.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/static_solver.h"
 #include <gtest/gtest.h>
+#include <numbers>
+#include <random>
 
 using namespace dembridge::dem;
 
@@ -172,4 +175,41 @@ TEST(Confinement, ProportionalPressureHoldsTheRatio)
                 apparent / closed_form - 1);
     EXPECT_NEAR(apparent / closed_form, 1.0, 0.02);
   }
+}
+
+// The crack-orientation histogram (crack_orientation.h): normals at known angles land in their
+// bins, and an isotropic population fills the bins as the sphere's area does (within four
+// standard deviations of the binomial count).
+TEST(CrackOrientation, KnownAnglesAndIsotropicBaseline)
+{
+  constexpr double degree = std::numbers::pi / 180;
+  std::vector<CrackEvent> cracks;
+  for (double theta : {5.0, 15.0, 89.0, 61.0, 30.5})
+  {
+    CrackEvent c;
+    // load axis y; the normal's other part along z
+    c.axis = Vec3(0, std::cos(theta * degree), -std::sin(theta * degree));
+    cracks.push_back(c);
+  }
+  const CrackOrientation h = crack_orientation(cracks, 1, 9);
+  EXPECT_EQ(h.counts, (std::vector<long>{1, 1, 0, 1, 0, 0, 1, 0, 1}));
+  EXPECT_NEAR(h.mean_angle, (5.0 + 15.0 + 89.0 + 61.0 + 30.5) / 5, 1e-9);
+  EXPECT_DOUBLE_EQ(h.along_load_fraction, 0.4);
+  double total = 0;
+  for (double f : h.isotropic_fraction)
+    total += f;
+  EXPECT_NEAR(total, 1.0, 1e-14);
+
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  cracks.assign(20000, CrackEvent{});
+  for (auto& c : cracks)
+    c.axis = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+  const CrackOrientation iso = crack_orientation(cracks, 0, 9);
+  for (std::size_t k = 0; k < 9; ++k)
+  {
+    const double p = iso.isotropic_fraction[k], n = double(cracks.size());
+    EXPECT_NEAR(double(iso.counts[k]), p * n, 4 * std::sqrt(n * p * (1 - p))) << "bin " << k;
+  }
+  EXPECT_NEAR(iso.mean_angle, 57.2958, 0.5); // the mean of theta over the sphere is 1 radian
 }
