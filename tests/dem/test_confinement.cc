@@ -213,3 +213,51 @@ TEST(CrackOrientation, KnownAnglesAndIsotropicBaseline)
   }
   EXPECT_NEAR(iso.mean_angle, 57.2958, 0.5); // the mean of theta over the sphere is 1 radian
 }
+
+// Bad pressures: one line naming the load and the key.
+TEST(Confinement, RefusesBadPressures)
+{
+  auto message = [](auto edit)
+  {
+    CaseConfig c = block_case(shortening, 0, 0.3, false);
+    edit(c);
+    try
+    {
+      build_model(c);
+    }
+    catch (const InputError& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message([](CaseConfig&) {}), "");
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[1].load.area = 0; }).rfind("Load confine/area:", 0),
+            0u);
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[1].load.value = Vec3::Zero(); })
+                .rfind("Load confine/value:", 0),
+            0u);
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[1].ratio_load.clear(); })
+                .rfind("Load confine/ratio load:", 0),
+            0u);
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[1].ratio_load = "nothing"; })
+                .rfind("Load confine/ratio load: no load named 'nothing'", 0),
+            0u);
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[0].load.area = 0; }).rfind("Load drive/area:", 0),
+            0u);
+  EXPECT_EQ(message([](CaseConfig& c) { c.loads[0].load.kind = LoadKind::force; })
+                .rfind("Load confine/ratio load: 'drive' must prescribe", 0),
+            0u);
+  // the static solver takes p_0 only
+  CaseConfig c = block_case(shortening, 0, 0.3, true);
+  Model m = build_model(c);
+  try
+  {
+    solve_static(m);
+    ADD_FAILURE() << "a ratio in a static run was taken";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind("Load confine/ratio:", 0), 0u) << e.what();
+  }
+}
