@@ -121,6 +121,35 @@ void CrackOutput::finish() const
   }
 }
 
+void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p, const dem::BondStore& b)
+{
+  if (b.bond_class.empty()) // no microstructure (dem/bonds/bond_class.h)
+    return;
+  std::array<long, dem::bond_class_count> all{}, broken{};
+  long intergranular = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+  {
+    ++all[std::size_t(b.bond_class[k])];
+    if (b.state[k] != dem::BondState::broken)
+      continue;
+    ++broken[std::size_t(b.bond_class[k])];
+    intergranular +=
+        !p.grain.empty() && p.grain[std::size_t(b.a[k])] != p.grain[std::size_t(b.b[k])];
+  }
+  for (std::size_t c = 0; c < dem::bond_class_count; ++c)
+  {
+    const std::string name(dem::bond_class_names[c]);
+    j["bonds_per_class"][name] = all[c];
+    j["broken_bonds_per_class"][name] = broken[c];
+  }
+  if (!p.grain.empty())
+  {
+    j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
+    j["broken_bonds_intergranular"] = intergranular;
+    j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+  }
+}
+
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
                        int layer_axis, int load_axis)
@@ -132,32 +161,7 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
   j["broken_bonds_tension"] = tension;
   j["broken_bonds_shear"] = long(cracks.size()) - tension;
   j["broken_bond_fraction"] = b.size() > 0 ? double(cracks.size()) / double(b.size()) : 0.0;
-  if (!b.bond_class.empty()) // the microstructure's classes (dem/bonds/bond_class.h)
-  {
-    std::array<long, dem::bond_class_count> all{}, broken{};
-    long intergranular = 0;
-    for (std::size_t k = 0; k < b.size(); ++k)
-    {
-      ++all[std::size_t(b.bond_class[k])];
-      if (b.state[k] != dem::BondState::broken)
-        continue;
-      ++broken[std::size_t(b.bond_class[k])];
-      intergranular +=
-          !p.grain.empty() && p.grain[std::size_t(b.a[k])] != p.grain[std::size_t(b.b[k])];
-    }
-    for (std::size_t c = 0; c < dem::bond_class_count; ++c)
-    {
-      const std::string name(dem::bond_class_names[c]);
-      j["bonds_per_class"][name] = all[c];
-      j["broken_bonds_per_class"][name] = broken[c];
-    }
-    if (!p.grain.empty())
-    {
-      j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
-      j["broken_bonds_intergranular"] = intergranular;
-      j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
-    }
-  }
+  add_bond_class_summary(j, p, b);
   if (load_axis >= 0 && b.has_failure())
   {
     // against the load axis, and against each axis (a confined test's splitting cracks open

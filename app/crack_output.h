@@ -60,10 +60,15 @@ private:
   std::vector<std::pair<double, std::string>> files_;
 };
 
-/// summary.json: crack counts, the broken fraction per slab when `layers` > 0 (the slabs of
-/// Measurements/stress layers over the specimen's reference extent), and with a failure law and
-/// a load axis (0..2; -1: none) the orientation of the crack planes against it
-/// (dem/measurements/crack_orientation.h: crack_orientation, nine bins of 10 degrees).
+/// summary.json, with a microstructure: bonds_per_class, broken_bonds_per_class and with grains
+/// n_grains, broken_bonds_intergranular / _transgranular (nothing without one).
+void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p,
+                            const dem::BondStore& b);
+
+/// summary.json: crack counts (add_bond_class_summary included), the broken fraction per slab when
+/// `layers` > 0 (the slabs of Measurements/stress layers over the specimen's reference extent), and
+/// with a failure law and a load axis (0..2; -1: none) the orientation of the crack planes against
+/// it (dem/measurements/crack_orientation.h: crack_orientation, nine bins of 10 degrees).
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
                        int layer_axis, int load_axis = -1);

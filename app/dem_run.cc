@@ -302,6 +302,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       r.deflection_vector = dem::mean_displacement(model.particles, g);
       r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
     }
+    add_bond_class_summary(j, model.particles, model.bonds);
     j["solver"] = {{"type", "static"},
                    {"method", st.method},
                    {"iterations", st.iterations},
