@@ -1,6 +1,7 @@
 #include "crack_output.h"
 #include "checkpoint.h"
 #include "dem/core/output_file.h"
+#include "dem/measurements/crack_orientation.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
 #include "particle_vtu_file.h"
@@ -119,9 +120,38 @@ void CrackOutput::finish() const
   }
 }
 
+void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p, const dem::BondStore& b)
+{
+  if (b.bond_class.empty()) // no microstructure (dem/bonds/bond_class.h)
+    return;
+  std::array<long, dem::bond_class_count> all{}, broken{};
+  long intergranular = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+  {
+    ++all[std::size_t(b.bond_class[k])];
+    if (b.state[k] != dem::BondState::broken)
+      continue;
+    ++broken[std::size_t(b.bond_class[k])];
+    intergranular +=
+        !p.grain.empty() && p.grain[std::size_t(b.a[k])] != p.grain[std::size_t(b.b[k])];
+  }
+  for (std::size_t c = 0; c < dem::bond_class_count; ++c)
+  {
+    const std::string name(dem::bond_class_names[c]);
+    j["bonds_per_class"][name] = all[c];
+    j["broken_bonds_per_class"][name] = broken[c];
+  }
+  if (!p.grain.empty())
+  {
+    j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
+    j["broken_bonds_intergranular"] = intergranular;
+    j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+  }
+}
+
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
-                       int layer_axis)
+                       int layer_axis, int load_axis)
 {
   long tension = 0;
   for (const auto& c : cracks)
@@ -130,30 +160,25 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
   j["broken_bonds_tension"] = tension;
   j["broken_bonds_shear"] = long(cracks.size()) - tension;
   j["broken_bond_fraction"] = b.size() > 0 ? double(cracks.size()) / double(b.size()) : 0.0;
-  if (!b.bond_class.empty()) // the microstructure's classes (dem/bonds/bond_class.h)
+  add_bond_class_summary(j, p, b);
+  if (load_axis >= 0 && b.has_failure())
   {
-    std::array<long, dem::bond_class_count> all{}, broken{};
-    long intergranular = 0;
-    for (std::size_t k = 0; k < b.size(); ++k)
+    // against the load axis, and against each axis (a confined test's splitting cracks open
+    // across the free axis, not the confined one: the angle from the load alone misses it)
+    const dem::CrackOrientation h = dem::crack_orientation(cracks, load_axis, 9);
+    auto& o = j["crack_orientation"];
+    o = {{"load_axis", std::string(1, "xyz"[h.axis])},
+         {"normal_angle_edges_deg", h.edges},
+         {"isotropic_fraction", h.isotropic_fraction},
+         {"counts", h.counts},
+         {"fraction", h.fraction},
+         {"mean_normal_angle_deg", h.mean_angle},
+         {"along_load_fraction", h.along_load_fraction}};
+    for (int axis = 0; axis < 3; ++axis)
     {
-      ++all[std::size_t(b.bond_class[k])];
-      if (b.state[k] != dem::BondState::broken)
-        continue;
-      ++broken[std::size_t(b.bond_class[k])];
-      intergranular +=
-          !p.grain.empty() && p.grain[std::size_t(b.a[k])] != p.grain[std::size_t(b.b[k])];
-    }
-    for (std::size_t c = 0; c < dem::bond_class_count; ++c)
-    {
-      const std::string name(dem::bond_class_names[c]);
-      j["bonds_per_class"][name] = all[c];
-      j["broken_bonds_per_class"][name] = broken[c];
-    }
-    if (!p.grain.empty())
-    {
-      j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
-      j["broken_bonds_intergranular"] = intergranular;
-      j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+      const dem::CrackOrientation a = dem::crack_orientation(cracks, axis, 9);
+      o["from_axis"][std::string(1, "xyz"[axis])] = {
+          {"counts", a.counts}, {"fraction", a.fraction}, {"mean_normal_angle_deg", a.mean_angle}};
     }
   }
   if (!cracks.empty())

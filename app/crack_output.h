@@ -17,8 +17,10 @@
 //    the midspan deflection at it for three-point bending), from
 //    dem/measurements/failure_measurements.h; with a microstructure bonds_per_class and
 //    broken_bonds_per_class, with grains n_grains and broken_bonds_intergranular /
-//    broken_bonds_transgranular.
-// Runs without a failure law write none of these.
+//    broken_bonds_transgranular; crack_orientation: a histogram of the angle between each
+//    crack plane's normal (the bond axis) and the load axis (Measurements/modulus axis), and
+//    the same against each of x, y, z (from_axis).
+// Runs without a failure law write no crack files.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/solvers/explicit_solver.h"
@@ -62,11 +64,18 @@ private:
   std::vector<std::pair<double, std::string>> files_;
 };
 
-/// summary.json: crack counts, and the broken fraction per slab when `layers` > 0 (the slabs of
-/// Measurements/stress layers over the specimen's reference extent); runs with a failure law.
+/// summary.json, with a microstructure: bonds_per_class, broken_bonds_per_class and with grains
+/// n_grains, broken_bonds_intergranular / _transgranular (nothing without one).
+void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p,
+                            const dem::BondStore& b);
+
+/// summary.json: crack counts (add_bond_class_summary included), the broken fraction per slab when
+/// `layers` > 0 (the slabs of Measurements/stress layers over the specimen's reference extent), and
+/// with a failure law and a load axis (0..2; -1: none) the orientation of the crack planes against
+/// it (dem/measurements/crack_orientation.h: crack_orientation, nine bins of 10 degrees).
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
-                       int layer_axis);
+                       int layer_axis, int load_axis = -1);
 
 /// summary.json: peak_stress (Pa) and strain_at_peak of a uniaxial load history (force in N,
 /// end displacement in m) over the cross-section area and gauge length: magnitudes, at the

@@ -346,6 +346,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                     0.5 * std::pow(j["max_rotation"].get<double>(), 2));
       add_warning(j, line);
     }
+    add_bond_class_summary(j, model.particles, model.bonds);
     j["solver"] = {{"type", "static"},
                    {"method", st.method},
                    {"iterations", st.iterations},
@@ -388,7 +389,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     cracks = observer.cracks().cracks();
     if (failure_law)
       add_crack_summary(j, cracks, model.particles, model.bonds, config.measure.stress_layers,
-                        config.measure.stress_layer_axis);
+                        config.measure.stress_layer_axis, config.measure.modulus_axis);
+    else
+      add_bond_class_summary(j, model.particles, model.bonds);
     const auto [share_max, share_final] = observer.kinetic_share();
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;

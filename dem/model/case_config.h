@@ -64,6 +64,7 @@ struct LoadConfig
 {
   Load load;
   std::string group;
+  std::string ratio_load; ///< a pressure's sigma_ref load (Load::ratio_load), by name
 };
 
 struct BondConfig

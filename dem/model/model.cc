@@ -137,6 +137,7 @@ Model build_model(const CaseConfig& c)
                        "over a positive time (a jump is an infinite velocity)");
     m.loads.push_back(l);
   }
+  check_pressure_loads(c, m);
   check_loads_act_on_free_dofs(m);
   // Spatial order (renumbering.h) of the built specimen: strengths, groups and explicit bonds
   // were resolved in the user's numbering, and move with their particles and bonds; outputs

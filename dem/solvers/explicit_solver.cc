@@ -42,6 +42,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   prescribed_w_.assign(constrained_.size(), Vec3::Zero());
   constrained_w_.resize(constrained_.size());
   constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
+  applied_pressure_.assign(loads_.size(), 0.0);
   for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
     for (int i : groups_[g].members)
       p_.group_mask[i] |= 1u << g;
@@ -107,10 +108,31 @@ void ExplicitSolver::apply_loads()
   for (const auto& c : constraints_)
     for (int i : groups_[c.group].members)
       p_.dof_mask[i] |= c.dofs;
-  for (const auto& l : loads_)
+  for (std::size_t k = 0; k < loads_.size(); ++k)
   {
+    const Load& l = loads_[k];
     const auto& members = groups_[l.group].members;
-    if (l.prescribes_motion())
+    if (l.kind == LoadKind::pressure)
+    {
+      // F = (p_0 factor(t) + R sigma_ref) A d (loads.h), sigma_ref from the last step's reactions
+      const double p =
+          l.active(t) ? l.pressure * l.factor(t) +
+                            (l.ratio_load >= 0 ? l.ratio * reference_stress(l.ratio_load) : 0.0)
+                      : 0.0;
+      const double per_particle = l.area / double(members.size());
+      const Vec3 share = l.value * (p * per_particle);
+      // trapezoidal work with the previous step's pressure
+      const Vec3 mean_share =
+          steps_ > 0 ? Vec3(l.value * (0.5 * (p + applied_pressure_[k]) * per_particle))
+                     : Vec3::Zero();
+      applied_pressure_[k] = p;
+      for (int i : members)
+      {
+        p_.force[i] += share;
+        energy_.external += dt * mean_share.dot(p_.velocity[i]);
+      }
+    }
+    else if (l.prescribes_motion())
     {
       if (!l.active(t + 0.5 * dt))
         continue;
@@ -147,6 +169,19 @@ void ExplicitSolver::apply_loads()
       }
     }
   }
+}
+
+double ExplicitSolver::reference_stress(int load) const
+{
+  const Load& l = loads_[std::size_t(load)];
+  const Vec3 direction = l.value.normalized();
+  double reaction = 0;
+  for (int i : groups_[l.group].members)
+  {
+    const std::size_t c = slot(i);
+    reaction += constrained_reaction_[c].head<3>().dot(direction);
+  }
+  return reaction / l.area;
 }
 
 template <bool record> void ExplicitSolver::integrate()

@@ -5,7 +5,8 @@
 //
 // One step at time t_n (positions x^n, velocities v^{n-1/2}):
 //   1. bond forces from x^n, q^n (unified law, bond_kernel.h), dashpots from v^{n-1/2};
-//   2. external forces and moments of the loads at t_n;
+//   2. external forces and moments of the loads at t_n (a pressure's ratio part from the
+//      support reactions of step n-1);
 //   3. particle damping F''_i = -gamma |F_i| sign(v_i) per component (paper eq. 11-12), and
 //      mass damping -c m v^{n-1/2} (lagged: explicit, stable for c dt < 2);
 //   4. v^{n+1/2} = v^{n-1/2} + dt F/m (eq. 40), w likewise with I (eq. 44); constrained DOFs
@@ -90,6 +91,12 @@ public:
   Vec3 group_force(int group) const;
   /// Mean displacement of the group's particles from the reference configuration.
   Vec3 group_mean_displacement(int group) const;
+  /// The pressure (Pa) load @p load applied at the last step (loads.h: p_0 factor(t) + R
+  /// sigma_ref); 0 for other kinds.
+  double applied_pressure(std::size_t load) const { return applied_pressure_.at(load); }
+  /// sigma_ref of loads.h: the support reaction on load @p load's group along its value, over
+  /// its area, at the last step.
+  double reference_stress(int load) const;
   /// Latest end of any load ramp: after it, loads are constant.
   double last_ramp_end() const;
 
@@ -159,6 +166,7 @@ private:
   std::vector<Vec3> constrained_w_;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vector6> constrained_reaction_; ///< support reactions of the previous step
+  std::vector<double> applied_pressure_;      ///< per load: a pressure's value at the last step
   /// Bond ranges: phase 0 ranges run in parallel (one per chunk), then phase 1 (cut bonds
   /// between chunks s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> phases_;
