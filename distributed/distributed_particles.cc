@@ -1,0 +1,435 @@
+#include "distributed/distributed_particles.h"
+#include "distributed/bond_records.h"
+#include <algorithm>
+#include <cmath>
+#include <deal.II/base/index_set.h>
+#include <numeric>
+#include <unordered_map>
+
+namespace dembridge::distributed
+{
+namespace
+{
+using dem::Vec3;
+
+/// What a particle carries in the handler beside its location: the rest of its state
+/// (ParticleStore's fields, its support reaction) and its slot, the index of the per-step
+/// exchange (each rank's owned particles numbered contiguously at a rebuild).
+namespace property
+{
+constexpr unsigned slot = 0, reference_position = 1, velocity = 4, angular_velocity = 7,
+                   orientation = 10, force = 14, torque = 17, radius = 20, mass = 21, inertia = 22,
+                   dof_mask = 23, group_mask = 24, coordination = 25, user_id = 26, reaction = 27,
+                   count = 33;
+}
+
+/// Kinematics a ghost takes from its owner each step: x, v, w (3 each), q (x, y, z, w).
+constexpr std::size_t kinematics = 13;
+
+/// Weight of a cell in the mesh partition: one for the cell, this for each of its particles
+/// (the particles' bonds are the work; an empty margin cell costs next to nothing).
+constexpr unsigned particle_weight = 100;
+
+dealii::Point<3> point(const Vec3& x)
+{
+  return {x[0], x[1], x[2]};
+}
+
+Vec3 vec(const dealii::Point<3>& x)
+{
+  return {x[0], x[1], x[2]};
+}
+
+void write_properties(const dem::ParticleStore& p, std::size_t i, std::uint32_t group_mask,
+                      const Reaction& reaction, dealii::ArrayView<double> props)
+{
+  auto put = [&](unsigned at, const double* v, unsigned n)
+  { std::copy(v, v + n, props.begin() + at); };
+  put(property::reference_position, p.reference_position[i].data(), 3);
+  put(property::velocity, p.velocity[i].data(), 3);
+  put(property::angular_velocity, p.angular_velocity[i].data(), 3);
+  put(property::orientation, p.orientation[i].coeffs().data(), 4);
+  put(property::force, p.force[i].data(), 3);
+  put(property::torque, p.torque[i].data(), 3);
+  put(property::reaction, reaction.data(), 6);
+  props[property::radius] = p.radius[i];
+  props[property::mass] = p.mass[i];
+  props[property::inertia] = p.inertia[i];
+  props[property::dof_mask] = p.dof_mask[i];
+  props[property::group_mask] = group_mask;
+  props[property::coordination] = p.coordination[i];
+  props[property::user_id] = p.id[i];
+}
+
+void read_properties(const dealii::ArrayView<const double>& props, const Vec3& location,
+                     dem::ParticleStore& p, std::size_t i, Reaction* reaction)
+{
+  auto vec3 = [&](unsigned at) { return Vec3(props[at], props[at + 1], props[at + 2]); };
+  p.position[i] = location;
+  p.reference_position[i] = vec3(property::reference_position);
+  p.velocity[i] = vec3(property::velocity);
+  p.angular_velocity[i] = vec3(property::angular_velocity);
+  std::copy(props.begin() + property::orientation, props.begin() + property::orientation + 4,
+            p.orientation[i].coeffs().data());
+  p.force[i] = vec3(property::force);
+  p.torque[i] = vec3(property::torque);
+  p.radius[i] = props[property::radius];
+  p.mass[i] = props[property::mass];
+  p.inertia[i] = props[property::inertia];
+  p.dof_mask[i] = std::uint8_t(props[property::dof_mask]);
+  p.group_mask[i] = std::uint32_t(props[property::group_mask]);
+  p.coordination[i] = int(props[property::coordination]);
+  p.id[i] = std::int32_t(props[property::user_id]);
+  if (reaction)
+    std::copy(props.begin() + property::reaction, props.begin() + property::reaction + 6,
+              reaction->begin());
+}
+
+void resize(dem::ParticleStore& p, std::size_t n)
+{
+  p.position.resize(n), p.reference_position.resize(n), p.velocity.resize(n);
+  p.angular_velocity.resize(n), p.orientation.resize(n), p.force.resize(n), p.torque.resize(n);
+  p.radius.resize(n), p.mass.resize(n), p.inertia.resize(n), p.dof_mask.resize(n);
+  p.group_mask.resize(n), p.coordination.resize(n), p.id.resize(n);
+}
+
+/// Collective: throws on every rank with @p message when some rank has @p failed.
+void throw_if_any(bool failed, const std::string& message, MPI_Comm comm)
+{
+  if (dealii::Utilities::MPI::max(failed ? 1 : 0, comm) > 0)
+    throw std::runtime_error(message);
+}
+} // namespace
+
+DistributedParticles::DistributedParticles(const dem::Model& model, const BackgroundGrid& grid,
+                                           MPI_Comm comm)
+    : comm_(comm), grid_(grid), tria_(comm)
+{
+  create_background_mesh(tria_, grid_);
+  const dem::ParticleStore& p = model.particles;
+  n_global_ = std::int64_t(p.size());
+  skin_ = 0.5 * grid_.cell_width;
+  // the particles of each grid cell (a counting sort by cell)
+  const std::size_t n_cells = grid_.n_cells();
+  std::vector<std::size_t> first(n_cells + 1, 0), by_cell(p.size());
+  std::vector<long> cell(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    cell[i] = grid_.cell_of(p.position[i]);
+    if (cell[i] < 0)
+      throw std::logic_error("DistributedParticles: a particle outside the background grid");
+    ++first[std::size_t(cell[i]) + 1];
+  }
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      by_cell[next[std::size_t(cell[i])]++] = i;
+  }
+  auto grid_cell = [&](const auto& c) { return std::size_t(grid_.cell_of(vec(c->center()))); };
+  // balance the particles, not the cells (step-68)
+  auto weights = tria_.signals.weight.connect(
+      [&](const auto& c, const auto) -> unsigned
+      {
+        const std::size_t k = grid_cell(c);
+        return 1 + particle_weight * unsigned(first[k + 1] - first[k]);
+      });
+  tria_.repartition();
+  weights.disconnect();
+  handler_.initialize(tria_, mapping_, property::count);
+  handler_.signals.particle_lost.connect([this](const auto&, const auto&) { ++n_lost_; });
+
+  std::vector<std::uint32_t> group_mask(p.size(), 0);
+  for (std::size_t g = 0; g < model.groups.size() && g < 32; ++g)
+    for (const int i : model.groups[g].members)
+      group_mask[std::size_t(i)] |= 1u << g;
+  std::vector<char> owned(p.size(), 0);
+  std::vector<double> props(property::count);
+  for (const auto& c : tria_.active_cell_iterators())
+  {
+    if (!c->is_locally_owned())
+      continue;
+    const std::size_t k = grid_cell(c);
+    for (std::size_t j = first[k]; j < first[k + 1]; ++j)
+    {
+      const std::size_t i = by_cell[j];
+      write_properties(p, i, group_mask[i], Reaction{}, dealii::make_array_view(props));
+      const dealii::Point<3> x = point(p.position[i]);
+      handler_.insert_particle(x, mapping_.transform_real_to_unit_cell(c, x),
+                               dealii::types::particle_index(i), c,
+                               dealii::make_array_view(std::as_const(props)));
+      owned[i] = 1;
+    }
+  }
+  handler_.update_cached_numbers();
+  // the bonds with an owned end, as records
+  bonds_.failure = model.bonds.failure;
+  bonds_.drop_force_records();
+  const std::size_t size = bond_record_size(bonds_);
+  std::vector<double> records;
+  for (std::size_t k = 0; k < model.bonds.size(); ++k)
+  {
+    const auto a = std::size_t(model.bonds.a[k]), b = std::size_t(model.bonds.b[k]);
+    if (!owned[a] && !owned[b])
+      continue;
+    records.resize(records.size() + size);
+    pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), &records[records.size() - size]);
+  }
+  build_local(records);
+}
+
+void DistributedParticles::build_local(std::vector<double>& records)
+{
+  // Owned particles in the order of their global ids (the model's spatial order: the bond
+  // loop's memory locality), numbered by slots contiguous over the ranks.
+  std::vector<std::pair<std::int64_t, dealii::Particles::ParticleIterator<3>>> owned;
+  owned.reserve(handler_.n_locally_owned_particles());
+  for (auto it = handler_.begin(); it != handler_.end(); ++it)
+    owned.emplace_back(std::int64_t(it->get_id()), it);
+  std::sort(owned.begin(), owned.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  n_owned_ = owned.size();
+  std::int64_t offset = 0, count = std::int64_t(n_owned_);
+  MPI_Exscan(&count, &offset, 1, MPI_INT64_T, MPI_SUM, comm_);
+  if (dealii::Utilities::MPI::this_mpi_process(comm_) == 0)
+    offset = 0; // MPI_Exscan leaves rank 0's result undefined
+  first_slot_ = offset;
+  resize(particles_, n_owned_);
+  global_id_.resize(n_owned_);
+  reactions_.resize(n_owned_);
+  for (std::size_t k = 0; k < n_owned_; ++k)
+  {
+    auto& it = owned[k].second;
+    it->get_properties()[property::slot] = double(offset + std::int64_t(k));
+    read_properties(it->get_properties(), vec(it->get_location()), particles_, k, &reactions_[k]);
+    global_id_[k] = owned[k].first;
+  }
+  handler_.exchange_ghost_particles(false);
+  std::vector<std::pair<std::int64_t, dealii::Particles::ParticleIterator<3>>> ghosts;
+  for (auto it = handler_.begin_ghost(); it != handler_.end_ghost(); ++it)
+    ghosts.emplace_back(std::int64_t(it->get_properties()[property::slot]), it);
+  std::sort(ghosts.begin(), ghosts.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  const std::size_t n = n_owned_ + ghosts.size();
+  resize(particles_, n);
+  global_id_.resize(n);
+  for (std::size_t j = 0; j < ghosts.size(); ++j)
+  {
+    const auto& it = ghosts[j].second;
+    read_properties(it->get_properties(), vec(it->get_location()), particles_, n_owned_ + j,
+                    nullptr);
+    global_id_[n_owned_ + j] = std::int64_t(it->get_id());
+  }
+  rebuilt_at_.assign(particles_.position.begin(), particles_.position.begin() + long(n_owned_));
+
+  // Bonds: one copy of each record, those with an owned end, between local indices; a bonded
+  // pair must have both ends here (the ghost layer is one cell deep: the cells are at least
+  // the cut-off wide), a broken one whose far end left is dropped (it carries nothing; the
+  // crack log keeps it).
+  std::unordered_map<std::int64_t, std::int32_t> local;
+  local.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    local.emplace(global_id_[i], std::int32_t(i));
+  const std::size_t size = bond_record_size(bonds_);
+  const std::size_t n_records = records.size() / size;
+  struct Held
+  {
+    std::int32_t a, b;
+    std::size_t record;
+  };
+  std::vector<Held> held;
+  held.reserve(n_records);
+  bool too_long = false;
+  std::string where;
+  for (std::size_t r = 0; r < n_records; ++r)
+  {
+    const double* rec = &records[r * size];
+    const auto a = local.find(record_a(rec)), b = local.find(record_b(rec));
+    const bool a_owned = a != local.end() && std::size_t(a->second) < n_owned_;
+    const bool b_owned = b != local.end() && std::size_t(b->second) < n_owned_;
+    if (!a_owned && !b_owned)
+      continue;
+    if (a == local.end() || b == local.end())
+    {
+      if (record_bonded(rec) && !too_long)
+        too_long = true,
+        where = std::to_string(record_a(rec)) + " and " + std::to_string(record_b(rec));
+      continue;
+    }
+    held.push_back({a->second, b->second, r});
+  }
+  throw_if_any(too_long,
+               "a bond (between particles " + where +
+                   " on some rank) grew longer than a background cell: its ends are no longer "
+                   "in touching cells",
+               comm_);
+  // the bond loop's order: by lower particle (runs of bonds share it), then upper
+  std::stable_sort(held.begin(), held.end(),
+                   [](const Held& x, const Held& y)
+                   {
+                     return std::pair(std::min(x.a, x.b), std::max(x.a, x.b)) <
+                            std::pair(std::min(y.a, y.b), std::max(y.a, y.b));
+                   });
+  held.erase(std::unique(held.begin(), held.end(),
+                         [](const Held& x, const Held& y) { return x.a == y.a && x.b == y.b; }),
+             held.end());
+  dem::BondStore bonds;
+  bonds.failure = bonds_.failure;
+  bonds.drop_force_records();
+  bonds.reserve(held.size());
+  for (const Held& h : held)
+    unpack_bond(&records[h.record * size], bonds, h.a, h.b);
+  bonds_ = std::move(bonds);
+
+  // The per-step exchange: 13 doubles a particle at 13 slot + c; owned slots are contiguous.
+  const auto n_slots =
+      dealii::types::global_dof_index(dealii::Utilities::MPI::sum(std::uint64_t(n_owned_), comm_));
+  dealii::IndexSet owned_set(kinematics * n_slots), ghost_set(kinematics * n_slots);
+  owned_set.add_range(kinematics * dealii::types::global_dof_index(offset),
+                      kinematics * dealii::types::global_dof_index(offset + count));
+  for (const auto& g : ghosts)
+    ghost_set.add_range(kinematics * dealii::types::global_dof_index(g.first),
+                        kinematics * dealii::types::global_dof_index(g.first + 1));
+  ghost_set.compress();
+  partitioner_ =
+      std::make_shared<const dealii::Utilities::MPI::Partitioner>(owned_set, ghost_set, comm_);
+  std::vector<char> sent(n_owned_, 0);
+  for (const auto& [begin, end] : partitioner_->import_indices())
+    for (unsigned k = begin; k < end; k += kinematics)
+      sent[k / kinematics] = 1;
+  exported_.clear();
+  for (std::size_t i = 0; i < n_owned_; ++i)
+    if (sent[i])
+      exported_.push_back(std::uint32_t(i));
+  owned_buffer_.assign(kinematics * n_owned_, 0.0);
+  ghost_buffer_.assign(kinematics * ghosts.size(), 0.0);
+  send_buffer_.assign(partitioner_->n_import_indices(), 0.0);
+}
+
+void DistributedParticles::update_ghosts()
+{
+  const auto& p = particles_;
+  for (const std::uint32_t i : exported_)
+  {
+    double* k = &owned_buffer_[kinematics * i];
+    std::copy(p.position[i].data(), p.position[i].data() + 3, k);
+    std::copy(p.velocity[i].data(), p.velocity[i].data() + 3, k + 3);
+    std::copy(p.angular_velocity[i].data(), p.angular_velocity[i].data() + 3, k + 6);
+    std::copy(p.orientation[i].coeffs().data(), p.orientation[i].coeffs().data() + 4, k + 9);
+  }
+  const dealii::ArrayView<double> ghosts = dealii::make_array_view(ghost_buffer_);
+  partitioner_->export_to_ghosted_array_start<double>(
+      0, dealii::make_array_view(std::as_const(owned_buffer_)),
+      dealii::make_array_view(send_buffer_), ghosts, requests_);
+  partitioner_->export_to_ghosted_array_finish<double>(ghosts, requests_);
+  const std::size_t n_ghosts = particles_.size() - n_owned_;
+  for (std::size_t j = 0; j < n_ghosts; ++j)
+  {
+    const double* k = &ghost_buffer_[kinematics * j];
+    const std::size_t i = n_owned_ + j;
+    particles_.position[i] = Vec3(k[0], k[1], k[2]);
+    particles_.velocity[i] = Vec3(k[3], k[4], k[5]);
+    particles_.angular_velocity[i] = Vec3(k[6], k[7], k[8]);
+    std::copy(k + 9, k + 13, particles_.orientation[i].coeffs().data());
+  }
+}
+
+DistributedParticles::MotionCheck DistributedParticles::check_motion(bool local_unstable)
+{
+  double moved = 0;
+  bool finite = !local_unstable;
+  for (std::size_t i = 0; i < n_owned_; ++i)
+  {
+    const double d2 = (particles_.position[i] - rebuilt_at_[i]).squaredNorm();
+    finite = finite && std::isfinite(d2);
+    moved = std::max(moved, d2);
+  }
+  double local[2] = {moved, finite ? 0.0 : 1.0}, global[2];
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm_);
+  return {global[0] > skin_ * skin_, global[1] > 0};
+}
+
+void DistributedParticles::rebuild(const std::vector<Reaction>& reactions)
+{
+  ++n_rebuilds_;
+  // 1. the owned particles' state into the handler (a particle's slot - the first slot = its
+  // local index)
+  for (auto it = handler_.begin(); it != handler_.end(); ++it)
+  {
+    const auto props = it->get_properties();
+    const auto i = std::size_t(std::int64_t(props[property::slot]) - first_slot_);
+    it->set_location(point(particles_.position[i]));
+    write_properties(particles_, i, particles_.group_mask[i], reactions[i], props);
+  }
+  // 2. the bonds held, by global ids; the ids owned until now
+  const std::size_t size = bond_record_size(bonds_);
+  std::vector<double> records(size * bonds_.size());
+  for (std::size_t k = 0; k < bonds_.size(); ++k)
+    pack_bond(bonds_, k, global_id_[std::size_t(bonds_.a[k])], global_id_[std::size_t(bonds_.b[k])],
+              &records[k * size]);
+  std::vector<std::int64_t> was_owned(global_id_.begin(), global_id_.begin() + long(n_owned_));
+  std::sort(was_owned.begin(), was_owned.end());
+  // 3. the handler moves particles into their new cells and ranks
+  handler_.sort_particles_into_subdomains_and_cells();
+  throw_if_any(n_lost_ > 0,
+               "a particle left the background mesh, or moved more than a cell between two "
+               "migrations",
+               comm_);
+  // 4. each bond of a particle that left goes to the particle's new owner
+  std::vector<std::int64_t> now_owned;
+  now_owned.reserve(handler_.n_locally_owned_particles());
+  for (auto it = handler_.begin(); it != handler_.end(); ++it)
+    now_owned.push_back(std::int64_t(it->get_id()));
+  std::sort(now_owned.begin(), now_owned.end());
+  std::vector<std::int64_t> departed, arrived;
+  std::set_difference(was_owned.begin(), was_owned.end(), now_owned.begin(), now_owned.end(),
+                      std::back_inserter(departed));
+  std::set_difference(now_owned.begin(), now_owned.end(), was_owned.begin(), was_owned.end(),
+                      std::back_inserter(arrived));
+  n_arrived_ += long(arrived.size());
+  const auto ids = dealii::types::global_dof_index(n_global_);
+  dealii::IndexSet owned_set(ids), departed_set(ids);
+  for (const auto i : now_owned)
+    owned_set.add_index(dealii::types::global_dof_index(i));
+  for (const auto i : departed)
+    departed_set.add_index(dealii::types::global_dof_index(i));
+  owned_set.compress(), departed_set.compress();
+  const std::vector<unsigned> new_owner =
+      dealii::Utilities::MPI::compute_index_owner(owned_set, departed_set, comm_);
+  std::map<unsigned, std::vector<double>> outgoing;
+  auto owner_of = [&](std::int64_t id) -> int
+  {
+    const auto at = std::lower_bound(departed.begin(), departed.end(), id);
+    return at != departed.end() && *at == id ? int(new_owner[std::size_t(at - departed.begin())])
+                                             : -1;
+  };
+  for (std::size_t k = 0; k < bonds_.size(); ++k)
+  {
+    const double* rec = &records[k * size];
+    const int to_a = owner_of(record_a(rec)), to_b = owner_of(record_b(rec));
+    for (const int to : {to_a, to_b == to_a ? -1 : to_b})
+      if (to >= 0)
+      {
+        auto& out = outgoing[unsigned(to)];
+        out.insert(out.end(), rec, rec + size);
+      }
+  }
+  for (const auto& [from, incoming] : dealii::Utilities::MPI::some_to_some(comm_, outgoing))
+  {
+    (void)from;
+    records.insert(records.end(), incoming.begin(), incoming.end());
+  }
+  // 5. the stores anew
+  build_local(records);
+}
+
+std::size_t DistributedParticles::halo_doubles() const
+{
+  return partitioner_->n_import_indices();
+}
+
+std::size_t DistributedParticles::halo_targets() const
+{
+  return partitioner_->import_targets().size();
+}
+} // namespace dembridge::distributed
