@@ -282,7 +282,7 @@ void DistributedSolver::gather(bool all)
                    { return std::tuple(x.time, x.a, x.b) < std::tuple(y.time, y.a, y.b); });
 
   // the bonds that are no longer intact (booked on the rank of their end a)
-  if (all && model_.bonds.has_failure())
+  if (all && particles_.bonds().has_failure()) // (the model of a rank > 0 may be freed)
   {
     const dem::BondStore& b = particles_.bonds();
     mine.clear();

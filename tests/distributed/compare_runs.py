@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A DEM run on several MPI ranks against the same case on one rank.
 
-usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] KEY...
+usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] [--cracks] KEY...
 
 - every KEY of summary.json (a dotted path, e.g. energy.strain) agrees to R relative (default
   1e-10); a key that is a list or an object (a vector, a tensor, the energy terms) agrees to R
@@ -13,6 +13,8 @@ usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] KEY...
   difference of bond forces, so the time series of such runs differ between one and two
   threads on one rank by about 1e-9 of their scale already; H catches a lost particle, a group
   summed on one rank only or a row out of step.
+- with --cracks, cracks.csv holds the same cracks in the same order: particles, bond and mode
+  equal, time, position, axis and energy within 1e-9 relative (ten printed digits).
 Prints one line per check; exit code 1 when one fails.
 """
 import csv
@@ -38,12 +40,15 @@ def main(argv):
     args = argv[1:]
     rtol, history_rtol = 1e-10, 1e-6
     keys = []
+    cracks = False
     while args:
         a = args.pop(0)
         if a == "--rtol":
             rtol = float(args.pop(0))
         elif a == "--history-rtol":
             history_rtol = float(args.pop(0))
+        elif a == "--cracks":
+            cracks = True
         else:
             keys.append(a)
     ref_dir, run_dir = keys[0], keys[1]
@@ -88,6 +93,20 @@ def main(argv):
         check(worst <= history_rtol,
               "history.csv columns within %.3g of their scale (largest %.3g, %s)"
               % (history_rtol, worst, where))
+    if cracks:
+        rows_a = list(csv.reader(open(ref_dir + "/cracks.csv")))
+        rows_b = list(csv.reader(open(run_dir + "/cracks.csv")))
+        head = rows_a[0]
+        exact = [head.index(k) for k in ("mode", "particle_a", "particle_b", "bond")]
+        same = len(rows_a) == len(rows_b) and rows_a[0] == rows_b[0]
+        for x, y in zip(rows_a[1:], rows_b[1:]):
+            for j in range(len(head)):
+                if j in exact:
+                    same = same and x[j] == y[j]
+                else:
+                    a, b = float(x[j]), float(y[j])
+                    same = same and abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300)
+        check(same, "cracks.csv: the same %d cracks" % (len(rows_a) - 1))
     return 1 if failed else 0
 
 
