@@ -99,12 +99,34 @@ void throw_if_any(bool failed, const std::string& message, MPI_Comm comm)
   if (dealii::Utilities::MPI::max(failed ? 1 : 0, comm) > 0)
     throw std::runtime_error(message);
 }
+
+/// FNV-1a over the bytes of the model's particles and bonds: every rank must hold the same model.
+std::uint64_t model_checksum(const dem::Model& m)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const auto& v)
+  {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(v.data());
+    for (std::size_t i = 0; i < v.size() * sizeof(v[0]); ++i)
+      h = (h ^ bytes[i]) * 1099511628211ull;
+  };
+  add(m.particles.position), add(m.particles.radius), add(m.particles.mass);
+  add(m.bonds.a), add(m.bonds.b), add(m.bonds.kn), add(m.bonds.state);
+  return h;
+}
 } // namespace
 
 DistributedParticles::DistributedParticles(const dem::Model& model, const BackgroundGrid& grid,
                                            MPI_Comm comm)
     : comm_(comm), grid_(grid), tria_(comm)
 {
+  {
+    const std::uint64_t mine = model_checksum(model);
+    throw_if_any(dealii::Utilities::MPI::min(mine, comm) != dealii::Utilities::MPI::max(mine, comm),
+                 "the MPI ranks built different models (every rank builds the case: a packing "
+                 "that differs between processes?)",
+                 comm);
+  }
   create_background_mesh(tria_, grid_);
   const dem::ParticleStore& p = model.particles;
   n_global_ = std::int64_t(p.size());

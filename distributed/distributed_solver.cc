@@ -62,7 +62,7 @@ enum : std::size_t
 };
 }
 
-constexpr long motion_check_interval = 8; // steps
+constexpr long motion_check_interval = 8;    // steps
 constexpr std::size_t particle_doubles = 22; // gather: id, x, v, w, q, F, M, coordination, DOFs
 constexpr std::size_t crack_doubles = 11;    // time, a, b, midpoint, axis, mode, energy
 constexpr std::size_t bond_state_doubles = 8;
