@@ -454,4 +454,20 @@ std::size_t DistributedParticles::halo_targets() const
 {
   return partitioner_->import_targets().size();
 }
+
+std::size_t DistributedParticles::handler_bytes() const
+{
+  const std::size_t in_handler =
+      handler_.n_locally_owned_particles() + (particles_.size() - n_owned_);
+  return in_handler * (7 + property::count) * sizeof(double);
+}
+
+std::size_t DistributedParticles::memory_bytes() const
+{
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(global_id_) + bytes(reactions_) +
+         bytes(rebuilt_at_) + bytes(exported_) + bytes(owned_buffer_) + bytes(ghost_buffer_) +
+         bytes(send_buffer_) + bytes(requests_) + partitioner_->memory_consumption() +
+         mesh_bytes() + handler_bytes();
+}
 } // namespace dembridge::distributed

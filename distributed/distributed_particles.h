@@ -77,6 +77,14 @@ public:
   /// Doubles sent per update_ghosts from this rank, and the ranks it sends to.
   std::size_t halo_doubles() const;
   std::size_t halo_targets() const;
+  /// Bytes this rank holds for its particles: the stores (capacity), the exchange's buffers and
+  /// partitioner, the background mesh (p4est and deal.II's cells), and the handler's particles
+  /// (handler_bytes()).
+  std::size_t memory_bytes() const;
+  /// Its parts: the background mesh, and the handler's particles (owned and ghosts) at their
+  /// location, reference location, id and property doubles each (the handler's own lists aside).
+  std::size_t mesh_bytes() const { return tria_.memory_consumption(); }
+  std::size_t handler_bytes() const;
 
 private:
   /// Slots, ghost exchange, stores and partitioner from the handler's owned particles and the

@@ -1,5 +1,6 @@
 #include "distributed/distributed_solver.h"
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -136,24 +137,37 @@ void DistributedSolver::migrate()
 
 void DistributedSolver::step(bool record)
 {
+  using clock = std::chrono::steady_clock;
+  auto since = [](clock::time_point t)
+  { return std::chrono::duration<double>(clock::now() - t).count(); };
   record = record || local_->steps() == 0; // the first step records (ExplicitSolver::step)
+  auto t0 = clock::now();
   local_->step(record);
+  timings_.local_step += since(t0);
+  t0 = clock::now();
   particles_.update_ghosts();
+  timings_.ghosts += since(t0);
   // The motion check is a reduction over the ranks: every few steps. A particle rebuilds at
   // half a cell of travel and is lost only after a whole cell; the other half takes far more
   // steps than this in any run whose time step resolves its bonds and contacts.
   if (steps() % motion_check_interval != 0 && !record)
     return;
+  t0 = clock::now();
   const auto& e = local_->energy();
   const auto check =
       particles_.check_motion(!std::isfinite(e.damping) || !std::isfinite(e.external));
+  timings_.motion_checks += since(t0);
   if (check.unstable)
     throw std::runtime_error("the simulation became unstable at step " + std::to_string(steps()) +
                              " (t = " + std::to_string(time()) + " s): non-finite energy");
+  t0 = clock::now();
   if (check.rebuild)
     migrate();
+  timings_.rebuilds += since(t0);
+  t0 = clock::now();
   if (record)
     reduce();
+  timings_.records += since(t0);
 }
 
 void DistributedSolver::reduce()

@@ -60,6 +60,12 @@ public:
   DistributedParticles& particles() { return particles_; }
   const dem::ExplicitSolver& local() const { return *local_; }
   long n_migrations() const { return particles_.n_rebuilds(); }
+  /// Wall seconds this rank spent in each part of its steps so far.
+  struct Timings
+  {
+    double local_step = 0, ghosts = 0, motion_checks = 0, rebuilds = 0, records = 0;
+  };
+  const Timings& timings() const { return timings_; }
 
 private:
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
@@ -82,6 +88,7 @@ private:
   std::array<long, 2> broken_by_mode_{};
   std::size_t cracks_gathered_ = 0; ///< of the local crack log
   std::vector<double> reduce_buffer_;
+  Timings timings_;
   /// rank 0: the model's bond index of each pair of global ids, and user id -> global id
   std::unordered_map<std::uint64_t, std::size_t> bond_index_;
   std::vector<std::int64_t> global_of_user_;
