@@ -71,7 +71,6 @@ BackgroundGrid background_grid_for(const dem::Model& model)
         std::max({longest, model.bonds.rest_length[k], (p.position[ib] - p.position[ia]).norm()});
   }
   const double largest_radius = *std::max_element(p.radius.begin(), p.radius.end());
-  const double width = longest > 0 ? 1.25 * longest : 2.5 * largest_radius;
   dem::Vec3 lo = p.position[0], hi = p.position[0];
   for (std::size_t i = 0; i < p.size(); ++i)
   {
@@ -79,7 +78,12 @@ BackgroundGrid background_grid_for(const dem::Model& model)
     lo = lo.cwiseMin(p.position[i] - r).cwiseMin(p.reference_position[i] - r);
     hi = hi.cwiseMax(p.position[i] + r).cwiseMax(p.reference_position[i] + r);
   }
-  const dem::Vec3 margin = dem::Vec3::Constant(2 * width) + 0.1 * (hi - lo);
+  // at least the cut-off; and about 27 particles a cell in the specimen (a cell of deal.II's
+  // mesh costs about a kilobyte, a particle's bonds half that: cells of one or two particles
+  // would hold more memory than the particles)
+  const double cut_off = longest > 0 ? 1.25 * longest : 2.5 * largest_radius;
+  const double width = std::max(cut_off, std::cbrt(27 * (hi - lo).prod() / double(p.size())));
+  const dem::Vec3 margin = dem::Vec3::Constant(width) + 0.05 * (hi - lo);
   return make_background_grid(lo - margin, hi + margin, width);
 }
 

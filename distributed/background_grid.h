@@ -35,10 +35,11 @@ struct BackgroundGrid
 BackgroundGrid make_background_grid(const dem::Vec3& lower, const dem::Vec3& upper,
                                     double min_cell_width);
 
-/// The grid for a model: cells 1.25 times its longest bond wide (2.5 times its largest radius
-/// without bonds), so that bonds stretched by a quarter still reach into a neighbouring cell at
-/// the next migration, over the spheres' extent (reference and current centres) with a margin of
-/// two cells and a tenth of the extent on every side.
+/// The grid for a model: cells at least 1.25 times its longest bond wide (2.5 times its largest
+/// radius without bonds), so that bonds stretched by a quarter still reach into a neighbouring
+/// cell at the next migration, and wide enough for about 27 particles a cell over the specimen
+/// (a mesh cell costs more memory than a particle); over the spheres' extent (reference and
+/// current centres) with a margin of one cell and a twentieth of the extent on every side.
 BackgroundGrid background_grid_for(const dem::Model& model);
 
 /// The p4est forest of the grid: one tree per coarse cell, refined `levels` times, partitioned
