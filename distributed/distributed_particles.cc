@@ -93,6 +93,18 @@ void resize(dem::ParticleStore& p, std::size_t n)
   p.group_mask.resize(n), p.coordination.resize(n), p.id.resize(n);
 }
 
+/// resize, then capacity = size: growing from the owned particles to owned + ghosts would
+/// otherwise double every field's capacity (a vector grows by doubling).
+void resize_exactly(dem::ParticleStore& p, std::size_t n)
+{
+  resize(p, n);
+  p.position.shrink_to_fit(), p.reference_position.shrink_to_fit(), p.velocity.shrink_to_fit();
+  p.angular_velocity.shrink_to_fit(), p.orientation.shrink_to_fit(), p.force.shrink_to_fit();
+  p.torque.shrink_to_fit(), p.radius.shrink_to_fit(), p.mass.shrink_to_fit();
+  p.inertia.shrink_to_fit(), p.dof_mask.shrink_to_fit(), p.group_mask.shrink_to_fit();
+  p.coordination.shrink_to_fit(), p.id.shrink_to_fit();
+}
+
 /// Collective: throws on every rank with @p message when some rank has @p failed.
 void throw_if_any(bool failed, const std::string& message, MPI_Comm comm)
 {
@@ -233,8 +245,9 @@ void DistributedParticles::build_local(std::vector<double>& records)
   std::sort(ghosts.begin(), ghosts.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
   const std::size_t n = n_owned_ + ghosts.size();
-  resize(particles_, n);
+  resize_exactly(particles_, n);
   global_id_.resize(n);
+  global_id_.shrink_to_fit();
   for (std::size_t j = 0; j < ghosts.size(); ++j)
   {
     const auto& it = ghosts[j].second;
