@@ -12,12 +12,20 @@ namespace
 {
 using dem::Vec3;
 
-/// What a particle carries in the handler beside its location: the rest of its state
-/// (ParticleStore's fields, its support reaction) and its slot, the index of the per-step
-/// exchange (each rank's owned particles numbered contiguously at a rebuild).
-namespace property
+/// What a particle carries in the handler beside its location: its slot, the index of the
+/// per-step exchange (each rank's owned particles numbered contiguously at a rebuild), and its
+/// user id (a ghost's crack log entry names it). Nothing else: the rest of its state travels
+/// only when it changes ranks (state, below), and a ghost needs only its owner's kinematics.
+namespace handler_property
 {
-constexpr unsigned slot = 0, reference_position = 1, velocity = 4, angular_velocity = 7,
+constexpr unsigned slot = 0, user_id = 1, count = 2;
+}
+
+/// A particle's state as it travels to a new owner: its global id, ParticleStore's fields but
+/// the position (the handler's location) and its support reaction (33 doubles).
+namespace state
+{
+constexpr unsigned id = 0, reference_position = 1, velocity = 4, angular_velocity = 7,
                    orientation = 10, force = 14, torque = 17, radius = 20, mass = 21, inertia = 22,
                    dof_mask = 23, group_mask = 24, coordination = 25, user_id = 26, reaction = 27,
                    count = 33;
@@ -40,49 +48,47 @@ Vec3 vec(const dealii::Point<3>& x)
   return {x[0], x[1], x[2]};
 }
 
-void write_properties(const dem::ParticleStore& p, std::size_t i, std::uint32_t group_mask,
-                      const Reaction& reaction, dealii::ArrayView<double> props)
+void pack_state(const dem::ParticleStore& p, std::size_t i, std::int64_t id,
+                std::uint32_t group_mask, const Reaction& reaction, double* out)
 {
-  auto put = [&](unsigned at, const double* v, unsigned n)
-  { std::copy(v, v + n, props.begin() + at); };
-  put(property::reference_position, p.reference_position[i].data(), 3);
-  put(property::velocity, p.velocity[i].data(), 3);
-  put(property::angular_velocity, p.angular_velocity[i].data(), 3);
-  put(property::orientation, p.orientation[i].coeffs().data(), 4);
-  put(property::force, p.force[i].data(), 3);
-  put(property::torque, p.torque[i].data(), 3);
-  put(property::reaction, reaction.data(), 6);
-  props[property::radius] = p.radius[i];
-  props[property::mass] = p.mass[i];
-  props[property::inertia] = p.inertia[i];
-  props[property::dof_mask] = p.dof_mask[i];
-  props[property::group_mask] = group_mask;
-  props[property::coordination] = p.coordination[i];
-  props[property::user_id] = p.id[i];
+  auto put = [&](unsigned at, const double* v, unsigned n) { std::copy(v, v + n, out + at); };
+  out[state::id] = double(id);
+  put(state::reference_position, p.reference_position[i].data(), 3);
+  put(state::velocity, p.velocity[i].data(), 3);
+  put(state::angular_velocity, p.angular_velocity[i].data(), 3);
+  put(state::orientation, p.orientation[i].coeffs().data(), 4);
+  put(state::force, p.force[i].data(), 3);
+  put(state::torque, p.torque[i].data(), 3);
+  put(state::reaction, reaction.data(), 6);
+  out[state::radius] = p.radius[i];
+  out[state::mass] = p.mass[i];
+  out[state::inertia] = p.inertia[i];
+  out[state::dof_mask] = p.dof_mask[i];
+  out[state::group_mask] = group_mask;
+  out[state::coordination] = p.coordination[i];
+  out[state::user_id] = p.id[i];
 }
 
-void read_properties(const dealii::ArrayView<const double>& props, const Vec3& location,
-                     dem::ParticleStore& p, std::size_t i, Reaction* reaction)
+/// Fills entry i of @p p (all but its position) from a packed state; returns the reaction.
+Reaction unpack_state(const double* in, dem::ParticleStore& p, std::size_t i)
 {
-  auto vec3 = [&](unsigned at) { return Vec3(props[at], props[at + 1], props[at + 2]); };
-  p.position[i] = location;
-  p.reference_position[i] = vec3(property::reference_position);
-  p.velocity[i] = vec3(property::velocity);
-  p.angular_velocity[i] = vec3(property::angular_velocity);
-  std::copy(props.begin() + property::orientation, props.begin() + property::orientation + 4,
-            p.orientation[i].coeffs().data());
-  p.force[i] = vec3(property::force);
-  p.torque[i] = vec3(property::torque);
-  p.radius[i] = props[property::radius];
-  p.mass[i] = props[property::mass];
-  p.inertia[i] = props[property::inertia];
-  p.dof_mask[i] = std::uint8_t(props[property::dof_mask]);
-  p.group_mask[i] = std::uint32_t(props[property::group_mask]);
-  p.coordination[i] = int(props[property::coordination]);
-  p.id[i] = std::int32_t(props[property::user_id]);
-  if (reaction)
-    std::copy(props.begin() + property::reaction, props.begin() + property::reaction + 6,
-              reaction->begin());
+  auto vec3 = [&](unsigned at) { return Vec3(in[at], in[at + 1], in[at + 2]); };
+  p.reference_position[i] = vec3(state::reference_position);
+  p.velocity[i] = vec3(state::velocity);
+  p.angular_velocity[i] = vec3(state::angular_velocity);
+  std::copy(in + state::orientation, in + state::orientation + 4, p.orientation[i].coeffs().data());
+  p.force[i] = vec3(state::force);
+  p.torque[i] = vec3(state::torque);
+  p.radius[i] = in[state::radius];
+  p.mass[i] = in[state::mass];
+  p.inertia[i] = in[state::inertia];
+  p.dof_mask[i] = std::uint8_t(in[state::dof_mask]);
+  p.group_mask[i] = std::uint32_t(in[state::group_mask]);
+  p.coordination[i] = int(in[state::coordination]);
+  p.id[i] = std::int32_t(in[state::user_id]);
+  Reaction r;
+  std::copy(in + state::reaction, in + state::reaction + 6, r.begin());
+  return r;
 }
 
 void resize(dem::ParticleStore& p, std::size_t n)
@@ -91,18 +97,6 @@ void resize(dem::ParticleStore& p, std::size_t n)
   p.angular_velocity.resize(n), p.orientation.resize(n), p.force.resize(n), p.torque.resize(n);
   p.radius.resize(n), p.mass.resize(n), p.inertia.resize(n), p.dof_mask.resize(n);
   p.group_mask.resize(n), p.coordination.resize(n), p.id.resize(n);
-}
-
-/// resize, then capacity = size: growing from the owned particles to owned + ghosts would
-/// otherwise double every field's capacity (a vector grows by doubling).
-void resize_exactly(dem::ParticleStore& p, std::size_t n)
-{
-  resize(p, n);
-  p.position.shrink_to_fit(), p.reference_position.shrink_to_fit(), p.velocity.shrink_to_fit();
-  p.angular_velocity.shrink_to_fit(), p.orientation.shrink_to_fit(), p.force.shrink_to_fit();
-  p.torque.shrink_to_fit(), p.radius.shrink_to_fit(), p.mass.shrink_to_fit();
-  p.inertia.shrink_to_fit(), p.dof_mask.shrink_to_fit(), p.group_mask.shrink_to_fit();
-  p.coordination.shrink_to_fit(), p.id.shrink_to_fit();
 }
 
 /// Collective: throws on every rank with @p message when some rank has @p failed.
@@ -170,7 +164,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
       });
   tria_.repartition();
   weights.disconnect();
-  handler_.initialize(tria_, mapping_, property::count);
+  handler_.initialize(tria_, mapping_, handler_property::count);
   handler_.signals.particle_lost.connect([this](const auto&, const auto&) { ++n_lost_; });
 
   std::vector<std::uint32_t> group_mask(p.size(), 0);
@@ -178,7 +172,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     for (const int i : model.groups[g].members)
       group_mask[std::size_t(i)] |= 1u << g;
   std::vector<char> owned(p.size(), 0);
-  std::vector<double> props(property::count);
+  double props[handler_property::count] = {0, 0};
   for (const auto& c : tria_.active_cell_iterators())
   {
     if (!c->is_locally_owned())
@@ -187,11 +181,11 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     for (std::size_t j = first[k]; j < first[k + 1]; ++j)
     {
       const std::size_t i = by_cell[j];
-      write_properties(p, i, group_mask[i], Reaction{}, dealii::make_array_view(props));
+      props[handler_property::user_id] = p.id[i];
       const dealii::Point<3> x = point(p.position[i]);
       handler_.insert_particle(x, mapping_.transform_real_to_unit_cell(c, x),
                                dealii::types::particle_index(i), c,
-                               dealii::make_array_view(std::as_const(props)));
+                               dealii::ArrayView<const double>(props, handler_property::count));
       owned[i] = 1;
     }
   }
@@ -209,51 +203,68 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     records.resize(records.size() + size);
     pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), &records[records.size() - size]);
   }
-  build_local(records);
+  std::vector<double> packed(state::count);
+  build_local(records,
+              [&](std::int64_t id, std::size_t i)
+              {
+                const auto m = std::size_t(id);
+                pack_state(p, m, id, group_mask[m], Reaction{}, packed.data());
+                return unpack_state(packed.data(), particles_, i);
+              });
 }
 
-void DistributedParticles::build_local(std::vector<double>& records)
+void DistributedParticles::build_local(std::vector<double>& records, const FillOwned& fill)
 {
   // Owned particles in the order of their global ids (the model's spatial order: the bond
-  // loop's memory locality), numbered by slots contiguous over the ranks.
-  std::vector<std::pair<std::int64_t, dealii::Particles::ParticleIterator<3>>> owned;
-  owned.reserve(handler_.n_locally_owned_particles());
-  for (auto it = handler_.begin(); it != handler_.end(); ++it)
-    owned.emplace_back(std::int64_t(it->get_id()), it);
-  std::sort(owned.begin(), owned.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  // loop's memory locality), numbered by slots contiguous over the ranks; the slots travel to
+  // the ghosts with the ghost exchange.
+  using Entry = std::pair<std::int64_t, dealii::Particles::ParticleIterator<3>>;
+  auto by_key = [](const Entry& x, const Entry& y) { return x.first < y.first; };
+  auto owned_entries = [&]
+  {
+    std::vector<Entry> owned;
+    owned.reserve(handler_.n_locally_owned_particles());
+    for (auto it = handler_.begin(); it != handler_.end(); ++it)
+      owned.emplace_back(std::int64_t(it->get_id()), it);
+    std::sort(owned.begin(), owned.end(), by_key);
+    return owned;
+  };
+  std::vector<Entry> owned = owned_entries();
   n_owned_ = owned.size();
   std::int64_t offset = 0, count = std::int64_t(n_owned_);
   MPI_Exscan(&count, &offset, 1, MPI_INT64_T, MPI_SUM, comm_);
   if (dealii::Utilities::MPI::this_mpi_process(comm_) == 0)
     offset = 0; // MPI_Exscan leaves rank 0's result undefined
   first_slot_ = offset;
-  resize(particles_, n_owned_);
-  global_id_.resize(n_owned_);
-  reactions_.resize(n_owned_);
   for (std::size_t k = 0; k < n_owned_; ++k)
-  {
-    auto& it = owned[k].second;
-    it->get_properties()[property::slot] = double(offset + std::int64_t(k));
-    read_properties(it->get_properties(), vec(it->get_location()), particles_, k, &reactions_[k]);
-    global_id_[k] = owned[k].first;
-  }
+    owned[k].second->get_properties()[handler_property::slot] = double(offset + std::int64_t(k));
   handler_.exchange_ghost_particles(false);
-  std::vector<std::pair<std::int64_t, dealii::Particles::ParticleIterator<3>>> ghosts;
+  owned = owned_entries(); // (iterators taken anew after the handler changed)
+  std::vector<Entry> ghosts;
   for (auto it = handler_.begin_ghost(); it != handler_.end_ghost(); ++it)
-    ghosts.emplace_back(std::int64_t(it->get_properties()[property::slot]), it);
-  std::sort(ghosts.begin(), ghosts.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+    ghosts.emplace_back(std::int64_t(it->get_properties()[handler_property::slot]), it);
+  std::sort(ghosts.begin(), ghosts.end(), by_key); // the partitioner's order
   const std::size_t n = n_owned_ + ghosts.size();
-  resize_exactly(particles_, n);
+  particles_ = {};
+  resize(particles_, n);
   global_id_.resize(n);
   global_id_.shrink_to_fit();
+  reactions_.clear();
+  for (std::size_t k = 0; k < n_owned_; ++k)
+  {
+    particles_.position[k] = vec(owned[k].second->get_location());
+    const Reaction r = fill(owned[k].first, k);
+    if (r != Reaction{})
+      reactions_.emplace_back(std::uint32_t(k), r);
+    global_id_[k] = owned[k].first;
+  }
   for (std::size_t j = 0; j < ghosts.size(); ++j)
   {
     const auto& it = ghosts[j].second;
-    read_properties(it->get_properties(), vec(it->get_location()), particles_, n_owned_ + j,
-                    nullptr);
-    global_id_[n_owned_ + j] = std::int64_t(it->get_id());
+    const std::size_t i = n_owned_ + j;
+    particles_.position[i] = vec(it->get_location());
+    particles_.id[i] = std::int32_t(it->get_properties()[handler_property::user_id]);
+    global_id_[i] = std::int64_t(it->get_id());
   }
   rebuilt_at_.assign(particles_.position.begin(), particles_.position.begin() + long(n_owned_));
 
@@ -328,35 +339,47 @@ void DistributedParticles::build_local(std::vector<double>& records)
   ghost_set.compress();
   partitioner_ =
       std::make_shared<const dealii::Utilities::MPI::Partitioner>(owned_set, ghost_set, comm_);
-  std::vector<char> sent(n_owned_, 0);
-  for (const auto& [begin, end] : partitioner_->import_indices())
-    for (unsigned k = begin; k < end; k += kinematics)
-      sent[k / kinematics] = 1;
-  exported_.clear();
-  for (std::size_t i = 0; i < n_owned_; ++i)
-    if (sent[i])
-      exported_.push_back(std::uint32_t(i));
-  owned_buffer_.assign(kinematics * n_owned_, 0.0);
   ghost_buffer_.assign(kinematics * ghosts.size(), 0.0);
   send_buffer_.assign(partitioner_->n_import_indices(), 0.0);
+  requests_.reserve(partitioner_->import_targets().size() + partitioner_->ghost_targets().size());
+  update_ghosts(); // the ghosts' kinematics
 }
 
 void DistributedParticles::update_ghosts()
 {
+  // The partitioner's pattern (Partitioner::export_to_ghosted_array_start and _finish), with the
+  // owned particles' kinematics packed straight into the send buffer, in the order of the
+  // partitioner's import indices (whole particles: 13 entries a slot).
   const auto& p = particles_;
-  for (const std::uint32_t i : exported_)
+  double* out = send_buffer_.data();
+  for (const auto& [begin, end] : partitioner_->import_indices())
+    for (unsigned k = begin; k < end; k += kinematics, out += kinematics)
+    {
+      const std::size_t i = k / kinematics;
+      std::copy(p.position[i].data(), p.position[i].data() + 3, out);
+      std::copy(p.velocity[i].data(), p.velocity[i].data() + 3, out + 3);
+      std::copy(p.angular_velocity[i].data(), p.angular_velocity[i].data() + 3, out + 6);
+      std::copy(p.orientation[i].coeffs().data(), p.orientation[i].coeffs().data() + 4, out + 9);
+    }
+  requests_.clear();
+  constexpr int tag = 3217; // the ghost refresh's messages
+  std::size_t at = 0;
+  for (const auto& [rank, n] : partitioner_->ghost_targets())
   {
-    double* k = &owned_buffer_[kinematics * i];
-    std::copy(p.position[i].data(), p.position[i].data() + 3, k);
-    std::copy(p.velocity[i].data(), p.velocity[i].data() + 3, k + 3);
-    std::copy(p.angular_velocity[i].data(), p.angular_velocity[i].data() + 3, k + 6);
-    std::copy(p.orientation[i].coeffs().data(), p.orientation[i].coeffs().data() + 4, k + 9);
+    requests_.emplace_back();
+    MPI_Irecv(ghost_buffer_.data() + at, int(n), MPI_DOUBLE, int(rank), tag, comm_,
+              &requests_.back());
+    at += n;
   }
-  const dealii::ArrayView<double> ghosts = dealii::make_array_view(ghost_buffer_);
-  partitioner_->export_to_ghosted_array_start<double>(
-      0, dealii::make_array_view(std::as_const(owned_buffer_)),
-      dealii::make_array_view(send_buffer_), ghosts, requests_);
-  partitioner_->export_to_ghosted_array_finish<double>(ghosts, requests_);
+  at = 0;
+  for (const auto& [rank, n] : partitioner_->import_targets())
+  {
+    requests_.emplace_back();
+    MPI_Isend(send_buffer_.data() + at, int(n), MPI_DOUBLE, int(rank), tag, comm_,
+              &requests_.back());
+    at += n;
+  }
+  MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
   const std::size_t n_ghosts = particles_.size() - n_owned_;
   for (std::size_t j = 0; j < n_ghosts; ++j)
   {
@@ -384,44 +407,52 @@ DistributedParticles::MotionCheck DistributedParticles::check_motion(bool local_
   return {global[0] > skin_ * skin_, global[1] > 0};
 }
 
-void DistributedParticles::rebuild(const std::vector<Reaction>& reactions)
+void DistributedParticles::rebuild(const Reactions& reactions)
 {
   ++n_rebuilds_;
-  // 1. the owned particles' state into the handler (a particle's slot - the first slot = its
-  // local index)
+  // 1. the owned particles' locations into the handler (slot - the first slot = local index)
   for (auto it = handler_.begin(); it != handler_.end(); ++it)
   {
-    const auto props = it->get_properties();
-    const auto i = std::size_t(std::int64_t(props[property::slot]) - first_slot_);
+    const auto i =
+        std::size_t(std::int64_t(it->get_properties()[handler_property::slot]) - first_slot_);
     it->set_location(point(particles_.position[i]));
-    write_properties(particles_, i, particles_.group_mask[i], reactions[i], props);
   }
-  // 2. the bonds held, by global ids; the ids owned until now
+  // 2. the bonds held, by global ids; the ids owned until now (sorted: owned particles are in
+  // the order of their ids)
   const std::size_t size = bond_record_size(bonds_);
   std::vector<double> records(size * bonds_.size());
   for (std::size_t k = 0; k < bonds_.size(); ++k)
     pack_bond(bonds_, k, global_id_[std::size_t(bonds_.a[k])], global_id_[std::size_t(bonds_.b[k])],
               &records[k * size]);
-  std::vector<std::int64_t> was_owned(global_id_.begin(), global_id_.begin() + long(n_owned_));
-  std::sort(was_owned.begin(), was_owned.end());
+  const std::vector<std::int64_t> was_owned(global_id_.begin(),
+                                            global_id_.begin() + long(n_owned_));
+  auto index_in = [](const std::vector<std::int64_t>& sorted, std::int64_t id) -> long
+  {
+    const auto at = std::lower_bound(sorted.begin(), sorted.end(), id);
+    return at != sorted.end() && *at == id ? long(at - sorted.begin()) : -1;
+  };
+  auto reaction_of = [&](std::size_t i)
+  {
+    const auto at = std::lower_bound(
+        reactions.begin(), reactions.end(), std::pair(std::uint32_t(i), Reaction{}),
+        [](const auto& x, const auto& y) { return x.first < y.first; });
+    return at != reactions.end() && at->first == i ? at->second : Reaction{};
+  };
   // 3. the handler moves particles into their new cells and ranks
   handler_.sort_particles_into_subdomains_and_cells();
   throw_if_any(n_lost_ > 0,
                "a particle left the background mesh, or moved more than a cell between two "
                "migrations",
                comm_);
-  // 4. each bond of a particle that left goes to the particle's new owner
+  // 4. a particle that left: its state and each of its bonds go to its new owner
   std::vector<std::int64_t> now_owned;
   now_owned.reserve(handler_.n_locally_owned_particles());
   for (auto it = handler_.begin(); it != handler_.end(); ++it)
     now_owned.push_back(std::int64_t(it->get_id()));
   std::sort(now_owned.begin(), now_owned.end());
-  std::vector<std::int64_t> departed, arrived;
+  std::vector<std::int64_t> departed;
   std::set_difference(was_owned.begin(), was_owned.end(), now_owned.begin(), now_owned.end(),
                       std::back_inserter(departed));
-  std::set_difference(now_owned.begin(), now_owned.end(), was_owned.begin(), was_owned.end(),
-                      std::back_inserter(arrived));
-  n_arrived_ += long(arrived.size());
   const auto ids = dealii::types::global_dof_index(n_global_);
   dealii::IndexSet owned_set(ids), departed_set(ids);
   for (const auto i : now_owned)
@@ -431,31 +462,67 @@ void DistributedParticles::rebuild(const std::vector<Reaction>& reactions)
   owned_set.compress(), departed_set.compress();
   const std::vector<unsigned> new_owner =
       dealii::Utilities::MPI::compute_index_owner(owned_set, departed_set, comm_);
+  // a message: the number of states, the states, the bond records
   std::map<unsigned, std::vector<double>> outgoing;
-  auto owner_of = [&](std::int64_t id) -> int
+  for (std::size_t d = 0; d < departed.size(); ++d)
   {
-    const auto at = std::lower_bound(departed.begin(), departed.end(), id);
-    return at != departed.end() && *at == id ? int(new_owner[std::size_t(at - departed.begin())])
-                                             : -1;
-  };
+    auto& out = outgoing[new_owner[d]];
+    if (out.empty())
+      out.push_back(0);
+    out[0] += 1;
+    const auto i = std::size_t(index_in(was_owned, departed[d]));
+    out.resize(out.size() + state::count);
+    pack_state(particles_, i, departed[d], particles_.group_mask[i], reaction_of(i),
+               &out[out.size() - state::count]);
+  }
+  std::map<unsigned, std::vector<double>> bond_messages;
   for (std::size_t k = 0; k < bonds_.size(); ++k)
   {
     const double* rec = &records[k * size];
-    const int to_a = owner_of(record_a(rec)), to_b = owner_of(record_b(rec));
+    const long da = index_in(departed, record_a(rec)), db = index_in(departed, record_b(rec));
+    const int to_a = da >= 0 ? int(new_owner[std::size_t(da)]) : -1;
+    const int to_b = db >= 0 ? int(new_owner[std::size_t(db)]) : -1;
     for (const int to : {to_a, to_b == to_a ? -1 : to_b})
       if (to >= 0)
       {
-        auto& out = outgoing[unsigned(to)];
+        auto& out = bond_messages[unsigned(to)];
         out.insert(out.end(), rec, rec + size);
       }
   }
-  for (const auto& [from, incoming] : dealii::Utilities::MPI::some_to_some(comm_, outgoing))
+  for (auto& [to, bonds] : bond_messages)
+  {
+    auto& out = outgoing[to];
+    if (out.empty())
+      out.push_back(0);
+    out.insert(out.end(), bonds.begin(), bonds.end());
+  }
+  std::unordered_map<std::int64_t, std::vector<double>::const_iterator> arrived;
+  const auto incoming = dealii::Utilities::MPI::some_to_some(comm_, outgoing);
+  for (const auto& [from, message] : incoming)
   {
     (void)from;
-    records.insert(records.end(), incoming.begin(), incoming.end());
+    const auto n_states = std::size_t(message[0]);
+    auto at = message.begin() + 1;
+    for (std::size_t k = 0; k < n_states; ++k, at += state::count)
+      arrived.emplace(std::int64_t(at[state::id]), at);
+    records.insert(records.end(), at, message.end());
   }
-  // 5. the stores anew
-  build_local(records);
+  n_arrived_ += long(arrived.size());
+  // 5. the stores anew: a particle that stayed from the old store, one that arrived from its
+  // message
+  const dem::ParticleStore old = std::move(particles_);
+  std::vector<double> packed(state::count);
+  build_local(records,
+              [&](std::int64_t id, std::size_t i)
+              {
+                if (const long was = index_in(was_owned, id); was >= 0)
+                {
+                  const auto w = std::size_t(was);
+                  pack_state(old, w, id, old.group_mask[w], reaction_of(w), packed.data());
+                  return unpack_state(packed.data(), particles_, i);
+                }
+                return unpack_state(&*arrived.at(id), particles_, i);
+              });
 }
 
 std::size_t DistributedParticles::halo_doubles() const
@@ -472,15 +539,14 @@ std::size_t DistributedParticles::handler_bytes() const
 {
   const std::size_t in_handler =
       handler_.n_locally_owned_particles() + (particles_.size() - n_owned_);
-  return in_handler * (7 + property::count) * sizeof(double);
+  return in_handler * (7 + handler_property::count) * sizeof(double);
 }
 
 std::size_t DistributedParticles::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(global_id_) + bytes(reactions_) +
-         bytes(rebuilt_at_) + bytes(exported_) + bytes(owned_buffer_) + bytes(ghost_buffer_) +
-         bytes(send_buffer_) + bytes(requests_) + partitioner_->memory_consumption() +
-         mesh_bytes() + handler_bytes();
+         bytes(rebuilt_at_) + bytes(ghost_buffer_) + bytes(send_buffer_) + bytes(requests_) +
+         partitioner_->memory_consumption() + mesh_bytes() + handler_bytes();
 }
 } // namespace dembridge::distributed

@@ -27,6 +27,7 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/fe/mapping_cartesian.h>
 #include <deal.II/particles/particle_handler.h>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -35,6 +36,8 @@ namespace dembridge::distributed
 /// A particle's support reaction (force, moment) of the last step: state of the explicit
 /// solver that travels with the particle.
 using Reaction = std::array<double, 6>;
+/// The non-zero reactions of a rank's owned particles, by local index (ascending).
+using Reactions = std::vector<std::pair<std::uint32_t, Reaction>>;
 
 class DistributedParticles
 {
@@ -54,7 +57,7 @@ public:
   /// Global id (index in the model) of each local particle.
   const std::vector<std::int64_t>& global_ids() const { return global_id_; }
   /// The support reactions of the owned particles as the last rebuild brought them.
-  const std::vector<Reaction>& reactions() const { return reactions_; }
+  const Reactions& reactions() const { return reactions_; }
 
   /// Ghosts take their owners' x, v, w and q (collective; no allocation).
   void update_ghosts();
@@ -67,7 +70,7 @@ public:
   MotionCheck check_motion(bool local_unstable = false);
   /// Collective: migrates particles and their bonds to their new ranks and rebuilds the stores
   /// (see above). @p reactions: the owned particles' support reactions (the solver's state).
-  void rebuild(const std::vector<Reaction>& reactions);
+  void rebuild(const Reactions& reactions);
 
   long n_rebuilds() const { return n_rebuilds_; }
   /// Particles that arrived from other ranks over all rebuilds (this rank).
@@ -79,18 +82,20 @@ public:
   std::size_t halo_targets() const;
   /// Bytes this rank holds for its particles: the stores (capacity), the exchange's buffers and
   /// partitioner, the background mesh (p4est and deal.II's cells), and the handler's particles
-  /// (handler_bytes()).
+  /// at 72 bytes each (location, reference location, id and the 2 property doubles; the
+  /// handler's own lists aside).
   std::size_t memory_bytes() const;
-  /// Its parts: the background mesh, and the handler's particles (owned and ghosts) at their
-  /// location, reference location, id and property doubles each (the handler's own lists aside).
+  /// Its parts: the background mesh, and the handler's particles (owned and ghosts).
   std::size_t mesh_bytes() const { return tria_.memory_consumption(); }
   std::size_t handler_bytes() const;
 
 private:
+  /// Fills the owned particle with global id `id` at local index i (all but its position: the
+  /// handler's location); returns its support reaction.
+  using FillOwned = std::function<Reaction(std::int64_t id, std::size_t i)>;
   /// Slots, ghost exchange, stores and partitioner from the handler's owned particles and the
-  /// bond records held.
-  void build_local(std::vector<double>& records);
-  void check_rank_sizes() const;
+  /// bond records held; the ghosts' kinematics at the end (collective).
+  void build_local(std::vector<double>& records, const FillOwned& fill);
 
   MPI_Comm comm_;
   BackgroundGrid grid_;
@@ -101,7 +106,7 @@ private:
   dem::BondStore bonds_;
   std::size_t n_owned_ = 0;
   std::vector<std::int64_t> global_id_;
-  std::vector<Reaction> reactions_;
+  Reactions reactions_;
   std::int64_t n_global_ = 0;
   std::int64_t first_slot_ = 0;       ///< slot of the first owned particle
   std::vector<dem::Vec3> rebuilt_at_; ///< owned positions at the last rebuild
@@ -109,8 +114,7 @@ private:
   long n_rebuilds_ = 0, n_arrived_ = 0, n_lost_ = 0;
   // the per-step exchange: 13 doubles a particle at index 13 slot + c
   std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
-  std::vector<std::uint32_t> exported_; ///< owned particles that are ghosts elsewhere
-  std::vector<double> owned_buffer_, ghost_buffer_, send_buffer_;
+  std::vector<double> ghost_buffer_, send_buffer_;
   std::vector<MPI_Request> requests_;
 };
 } // namespace dembridge::distributed

@@ -119,16 +119,16 @@ void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& s
   local_ = std::make_unique<dem::ExplicitSolver>(p, particles_.bonds(), std::move(groups),
                                                  model_.constraints, std::move(loads), settings);
   local_->set_running_state(std::move(state));
-  for (std::size_t i = 0; i < owned; ++i)
-    local_->set_support_reaction(i, particles_.reactions()[i]);
+  for (const auto& [i, r] : particles_.reactions())
+    local_->set_support_reaction(i, r);
 }
 
 void DistributedSolver::migrate()
 {
-  const std::size_t owned = particles_.n_owned();
-  std::vector<Reaction> reactions(owned);
-  for (std::size_t i = 0; i < owned; ++i)
-    reactions[i] = local_->support_reaction(i);
+  Reactions reactions; // the constrained particles' (ExplicitSolver::support_reaction)
+  for (std::size_t i = 0; i < particles_.n_owned(); ++i)
+    if (const Reaction r = local_->support_reaction(i); r != Reaction{})
+      reactions.emplace_back(std::uint32_t(i), r);
   auto state = local_->take_running_state();
   local_.reset();
   particles_.rebuild(reactions);
