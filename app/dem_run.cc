@@ -11,6 +11,7 @@
 #include "dem/solvers/static_solver.h"
 #include "dem_history.h"
 #include "dem_parameters.h"
+#include "dem_run_ranks.h"
 #include "dem_static_run.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/bond_network_solver.h"
@@ -287,6 +288,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
   dem::Model model = dem::build_model(config);
+  if (run_dem_case_on_other_rank(config, model, checkpoint)) // mpirun -np N: rank 0 writes
+    return {};
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",
               model.particles.size(), model.bonds.size(), prm.get({"Bonds"}, "model").c_str(),
@@ -378,7 +381,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     schedule.checkpoint_wall_interval = checkpoint.file.empty() ? 0.0 : checkpoint.wall_interval;
     if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
       schedule.kill_after_step = std::atol(kill);
-    r = dem::run_explicit(model, config, observer, schedule);
+    r = run_explicit_on_ranks(model, config, observer, schedule);
     observer.finish();
     axial_du = observer.axial_displacements();
     axial_loaded = observer.axial_forces(false);

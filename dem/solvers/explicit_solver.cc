@@ -26,6 +26,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     throw InputError("Damping/mass damping: must be >= 0 and below 1 / time step (" +
                      std::to_string(1 / settings_.time_step) + " 1/s)");
   settings_.threads = std::max(1, settings_.threads);
+  owned_ = std::min(settings_.owned_particles, p_.size());
   std::vector<char> touched(p_.size(), 0);
   for (const auto& c : constraints_)
     for (int i : groups_.at(c.group).members)
@@ -188,7 +189,7 @@ template <bool record> void ExplicitSolver::integrate()
 {
   const double dt = settings_.time_step, gamma = settings_.particle_damping;
   const double mass_damping = settings_.mass_damping;
-  const std::size_t n = p_.size();
+  const std::size_t n = owned_; // ghosts (distributed runs) are their owners' to integrate
   double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0, unbalanced = 0;
   long n_free = 0;
   const std::size_t n_blocked = n - n % 8; // particles whose orientation turns in blocks of 8
@@ -317,6 +318,7 @@ template <bool record> void ExplicitSolver::integrate()
     energy_.kinetic = kinetic;
     max_speed_ = std::sqrt(vmax2);
     unbalanced_mean_ = n_free > 0 ? unbalanced / double(n_free) : 0.0;
+    unbalanced_sum_ = unbalanced, n_free_ = n_free;
   }
   // Work of supports with prescribed motion: 1/2 (R^{n-1} + R^n) . (x^n - x^{n-1}).
   for (std::size_t c = 0; c < constrained_.size(); ++c)
@@ -381,6 +383,48 @@ Vec3 ExplicitSolver::group_force(int group) const
 Vec3 ExplicitSolver::group_mean_displacement(int group) const
 {
   return mean_displacement(p_, groups_.at(group));
+}
+
+ExplicitSolver::RunningState ExplicitSolver::take_running_state()
+{
+  RunningState s;
+  s.time = time_, s.steps = steps_, s.energy = energy_, s.damping_work = damping_work_;
+  s.max_speed = max_speed_, s.unbalanced_mean = unbalanced_mean_;
+  s.unbalanced_ratio = unbalanced_ratio_, s.unbalanced = unbalanced_parts();
+  s.cracks = std::move(cracks_), s.broken_by_mode = broken_by_mode_;
+  cracks_.clear();
+  return s;
+}
+
+void ExplicitSolver::set_running_state(RunningState&& s)
+{
+  time_ = s.time, steps_ = s.steps, energy_ = s.energy, damping_work_ = s.damping_work;
+  max_speed_ = s.max_speed, unbalanced_mean_ = s.unbalanced_mean;
+  unbalanced_ratio_ = s.unbalanced_ratio;
+  unbalanced_sum_ = s.unbalanced.free_force, n_free_ = s.unbalanced.n_free;
+  intact_force_ = s.unbalanced.intact_force, n_intact_ = s.unbalanced.n_intact;
+  const std::size_t capacity = cracks_.capacity(); // the failure law's reserve
+  cracks_ = std::move(s.cracks);
+  cracks_.reserve(capacity);
+  broken_by_mode_ = s.broken_by_mode;
+}
+
+std::array<double, 6> ExplicitSolver::support_reaction(std::size_t i) const
+{
+  std::array<double, 6> r{};
+  const std::size_t c = slot(int(i));
+  if (c < constrained_.size() && constrained_[c] == int(i))
+    for (int k = 0; k < 6; ++k)
+      r[std::size_t(k)] = constrained_reaction_[c][k];
+  return r;
+}
+
+void ExplicitSolver::set_support_reaction(std::size_t i, const std::array<double, 6>& reaction)
+{
+  const std::size_t c = slot(int(i));
+  if (c < constrained_.size() && constrained_[c] == int(i))
+    for (int k = 0; k < 6; ++k)
+      constrained_reaction_[c][k] = reaction[std::size_t(k)];
 }
 
 double ExplicitSolver::last_ramp_end() const
