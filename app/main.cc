@@ -120,11 +120,8 @@ int run(const dembridge::app::MpiJob& job, const std::string& case_file,
   const std::string started_at = dembridge::app::utc_now();
   auto prm = dembridge::app::read_case(case_file, overrides);
   const std::string mode = prm->get("Mode");
-  // Every rank would run the whole particle model into the one folder: refused before anything
-  // is written.
-  if (mode == "dem")
-    job.require_one_rank(fs::path(case_file).filename().string() + ": Mode = dem",
-                         "the particle model is not split over ranks");
+  // Mode = dem on several ranks: explicit runs split the particles over the ranks (rank 0
+  // writes); what does not run there yet is refused on every rank alike (dem_run_ranks.h).
   // Paths inside the case (particle files, meshes) are relative to the case file.
   const fs::path case_dir = fs::absolute(case_file).parent_path();
   // The folder (prepare_checkpoint's rule: --resume's, --output-dir, or output/CASE) is locked
