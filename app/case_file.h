@@ -1,8 +1,9 @@
 #pragma once
-// Reading a case file: every parameter of every mode is declared (unknown keys are errors),
-// `Groups/names` and `Loads/names` add their named subsections (two passes), `--set` overrides
-// are applied after the file, and deal.II's multi-line parser messages are folded into one line
-// that names the file.
+// Reading a case file (.prm, or .json: case_json.h): every parameter of every mode is declared
+// (unknown keys are errors), `Groups/names`, `Loads/names` and `Walls/names` add their named
+// subsections (two passes; a name listed twice, or a named subsection no list names, is
+// refused), `--set` overrides are applied after the file, and deal.II's multi-line parser
+// messages are folded into one line that names the file.
 #include <deal.II/base/parameter_handler.h>
 #include <memory>
 #include <string>
@@ -21,10 +22,10 @@ void declare_all_parameters(dealii::ParameterHandler& prm,
 std::unique_ptr<dealii::ParameterHandler> read_case(const std::string& file,
                                                     const std::vector<std::string>& overrides);
 /// The same for the text of a case file; @p file names it in messages and decides the format
-/// by its extension (.json and .xml are read from the file itself). The fuzz target's entry.
-std::unique_ptr<dealii::ParameterHandler>
-read_case_text(const std::string& text, const std::string& file,
-               const std::vector<std::string>& overrides);
+/// by its extension (.xml is read from the file itself). The fuzz target's entry.
+std::unique_ptr<dealii::ParameterHandler> read_case_text(const std::string& text,
+                                                         const std::string& file,
+                                                         const std::vector<std::string>& overrides);
 
 /// Folds a deal.II exception text into one line (its "Additional information" part).
 std::string one_line(const std::string& what);

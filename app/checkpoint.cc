@@ -45,13 +45,26 @@ void write_string_attribute(hid_t at, const char* name, const std::string& value
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle attr(H5Acreate2(at, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   if (!attr.ok() || H5Awrite(attr.get(), type.get(), value.data()) < 0)
-    throw std::runtime_error(std::string("checkpoint: cannot write the attribute ") + name);
+    throw std::runtime_error(std::string("checkpoint: cannot write the attribute ") + name +
+                             hdf5::with_reason(hdf5::hdf5_reason()));
+}
+
+/// "FILE: WHAT: damaged..." (InputError): a checkpoint whose bytes are not those written.
+[[noreturn]] void damaged(const std::string& file, const std::string& what, const std::string& why)
+{
+  throw InputError(file + ": " + what + "damaged: " + why +
+                   "; the run cannot continue from this checkpoint");
 }
 
 /// Root attributes "format" and "format_version"; InputError when absent or another.
 void check_format(hid_t file, const std::string& name)
 {
-  if (H5Aexists(file, "format") <= 0 || H5Aexists(file, "format_version") <= 0)
+  const htri_t has_format = H5Aexists(file, "format"),
+               has_version = H5Aexists(file, "format_version");
+  if (has_format < 0 || has_version < 0)
+    damaged(name,
+            "/: ", "HDF5 cannot read its attributes" + hdf5::with_reason(hdf5::hdf5_reason()));
+  if (!has_format || !has_version)
     throw InputError(name + ": not a dembridge checkpoint (no 'format' attribute)");
   {
     Handle attr(H5Aopen(file, "format", H5P_DEFAULT), H5Aclose);
@@ -73,6 +86,12 @@ void check_format(hid_t file, const std::string& name)
     throw InputError(name + ": checkpoint format version " + std::to_string(version) +
                      ", this dembridge reads version " + std::to_string(checkpoint_format_version) +
                      " only");
+  // why: superblock version 2 and later is HDF5's format 1.8, whose metadata carries checksums
+  H5F_info2_t info{};
+  if (H5Fget_info2(file, &info) < 0 || info.super.version < 2)
+    damaged(name, "",
+            "its HDF5 superblock is of version " + std::to_string(info.super.version) +
+                ", which has no checksums (not as dembridge writes it)");
 }
 
 Handle open_checkpoint(const fs::path& file)
@@ -85,9 +104,58 @@ Handle open_checkpoint(const fs::path& file)
     throw InputError(name + ": not an HDF5 file");
   Handle h(H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!h.ok())
-    throw InputError(name + ": HDF5 cannot open it");
+    damaged(name, "", "HDF5 cannot open it" + hdf5::with_reason(hdf5::hdf5_reason()));
   check_format(h.get(), name);
   return h;
+}
+
+/// Reads every dataset under @p group (at @p path, "/" for the root) and compares its bytes with
+/// its checksum; InputError naming the file and the dataset, or the group HDF5 could not read.
+void verify_group(hid_t group, const std::string& path, const std::string& name,
+                  std::uintmax_t file_bytes)
+{
+  std::vector<std::string> links;
+  auto collect = [](hid_t, const char* link, const H5L_info_t* info, void* out) -> herr_t
+  {
+    if (info->type != H5L_TYPE_HARD)
+      return -1; // dembridge writes hard links only
+    static_cast<std::vector<std::string>*>(out)->push_back(link);
+    return 0;
+  };
+  if (H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &links) < 0)
+    damaged(name, path + ": ", "HDF5 cannot list it" + hdf5::with_reason(hdf5::hdf5_reason()));
+  for (const std::string& link : links)
+  {
+    const std::string at = path + link;
+    Handle object(H5Oopen(group, link.c_str(), H5P_DEFAULT), H5Oclose);
+    if (!object.ok())
+      damaged(name, at + ": ", "HDF5 cannot open it" + hdf5::with_reason(hdf5::hdf5_reason()));
+    const H5I_type_t kind = H5Iget_type(object.get());
+    if (kind == H5I_GROUP)
+    {
+      verify_group(object.get(), at + "/", name, file_bytes);
+      continue;
+    }
+    if (kind != H5I_DATASET)
+      damaged(name, at + ": ", "neither a group nor a dataset");
+    Handle type(H5Dget_type(object.get()), H5Tclose);
+    Handle space(H5Dget_space(object.get()), H5Sclose);
+    const hssize_t count = space.ok() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+    const std::size_t element = type.ok() ? H5Tget_size(type.get()) : 0;
+    // why: a size no file of this length can hold is damage, not an allocation to attempt
+    if (count < 0 || element == 0 || std::uintmax_t(count) > file_bytes / element)
+      damaged(name, at + ": ",
+              "HDF5 cannot read its type or size" + hdf5::with_reason(hdf5::hdf5_reason()));
+    // the bytes as they lie in the file: read in the file's own type, no conversion
+    std::vector<unsigned char> bytes(std::size_t(count) * element);
+    if (!bytes.empty() &&
+        H5Dread(object.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0)
+      damaged(name, at + ": ", "HDF5 cannot read it" + hdf5::with_reason(hdf5::hdf5_reason()));
+    const std::string mismatch =
+        hdf5::checksum_mismatch(object.get(), hdf5::crc32_of(bytes.data(), bytes.size()));
+    if (!mismatch.empty())
+      damaged(name, at + ": ", mismatch);
+  }
 }
 
 /// "Section/key" -> value of a short PRM text.
@@ -151,6 +219,38 @@ std::string checkpoint_case_text(const dealii::ParameterHandler& prm, const fs::
 
 namespace
 {
+/// The interrupted run's history file, which a resume continues from the length the checkpoint
+/// recorded: DIR/.partial (output_folder.h's staging folder) holds it as history.csv.part (DEM
+/// and coupled runs, /output/history_bytes) or history.csv (FE dynamics, /fem_run/). Refused
+/// here, naming the file, rather than in the run, where a failure clears the staging folder.
+void check_staged_history(const fs::path& file)
+{
+  Handle h = open_checkpoint(file);
+  for (const auto& [group, staged] :
+       {std::pair{"output", "history.csv.part"}, std::pair{"fem_run", "history.csv"}})
+  {
+    if (H5Lexists(h.get(), group, H5P_DEFAULT) <= 0 ||
+        H5Lexists(h.get(), (std::string(group) + "/history_bytes").c_str(), H5P_DEFAULT) <= 0)
+      continue;
+    Hdf5Archive hdf5(h.get(), true, file.string());
+    dem::StateArchive& archive = hdf5;
+    long bytes = 0;
+    {
+      dem::StateGroup g(archive, group);
+      archive.io("history_bytes", bytes);
+    }
+    const fs::path history = file.parent_path() / ".partial" / staged;
+    std::error_code missing;
+    const std::uintmax_t size = fs::file_size(history, missing);
+    if (missing || size < std::uintmax_t(std::max(0L, bytes)))
+      throw InputError(history.string() + ": " +
+                       (missing ? std::string("missing") : std::to_string(size) + " bytes") +
+                       ", but the checkpoint was written after " + std::to_string(bytes) +
+                       " bytes of it: cannot resume without the run's own file");
+    return;
+  }
+}
+
 /// A fresh run refuses a folder that holds a checkpoint; a resumed one reads the checkpoint's
 /// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time).
 void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
@@ -174,6 +274,7 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
     }
     return;
   }
+  verify_checkpoint(s.file); // every byte it holds, before anything is built or staged
   const CheckpointHeader h = read_checkpoint_header(s.file);
   check_same_case(h, s.case_text, s.file);
   // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split
@@ -182,6 +283,7 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
                      std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
                      std::to_string(s.ranks) + " (resume it with mpirun -np " +
                      std::to_string(h.mpi_ranks) + ")");
+  check_staged_history(s.file);
   s.resumed_step = h.step;
   s.resumed_time = h.time;
 }
@@ -263,6 +365,12 @@ CheckpointHeader read_checkpoint_header(const fs::path& file)
   return header;
 }
 
+void verify_checkpoint(const fs::path& file)
+{
+  Handle h = open_checkpoint(file);
+  verify_group(h.get(), "/", file.string(), fs::file_size(file));
+}
+
 void check_same_case(const CheckpointHeader& header, const std::string& case_text,
                      const fs::path& file)
 {
@@ -307,9 +415,13 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
   ++written;
   const fs::path tmp = file.string() + ".tmp";
   {
-    Handle h(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    // HDF5's file format 1.8 (and no older): its metadata carries checksums (hdf5_archive.h)
+    Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
+    Handle h(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), H5Fclose);
     if (!h.ok())
-      throw std::runtime_error(tmp.string() + ": cannot create the checkpoint");
+      throw std::runtime_error(tmp.string() + ": cannot create the checkpoint" +
+                               hdf5::with_reason(hdf5::hdf5_reason()));
     write_string_attribute(h.get(), "format", checkpoint_format_name);
     {
       Handle space(H5Screate(H5S_SCALAR), H5Sclose);
@@ -318,9 +430,10 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
                   H5Aclose);
       const std::int32_t version = checkpoint_format_version;
       if (!attr.ok() || H5Awrite(attr.get(), H5T_NATIVE_INT32, &version) < 0)
-        throw std::runtime_error(tmp.string() + ": cannot write the format version");
+        throw std::runtime_error(tmp.string() + ": cannot write the format version" +
+                                 hdf5::with_reason(hdf5::hdf5_reason()));
     }
-    Hdf5Archive archive(h.get(), false, file.filename().string());
+    Hdf5Archive archive(h.get(), false, tmp.string()); // write errors name the file
     CheckpointHeader copy = header;
     visit_header(archive, copy, true);
     if (written == kill_at)
@@ -329,8 +442,9 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
       std::raise(SIGKILL);
     }
     visit(archive);
-    if (H5Fflush(h.get(), H5F_SCOPE_GLOBAL) < 0)
-      throw std::runtime_error(tmp.string() + ": cannot write the checkpoint (disk full?)");
+    if (H5Fflush(h.get(), H5F_SCOPE_GLOBAL) < 0 || H5Fclose(h.release()) < 0)
+      throw std::runtime_error(tmp.string() + ": cannot write the checkpoint" +
+                               hdf5::with_reason(hdf5::hdf5_reason()));
   }
   dem::fsync_path(tmp); // the data is on the disk before the name points at it
   fs::rename(tmp, file);

@@ -9,11 +9,11 @@
 // so the file is always a complete checkpoint, the newest. It holds the complete state
 // (dem/core/state_archive.h: particles, bonds, solver, contacts, the driver's sums; in a coupled
 // run also the continuum's vectors and the tie's state) and the output so far (history.csv's
-// length, dem/core/history_file.h; snapshot lists, cracks), with a header: the format and its version, the dembridge version, the
-// step and time, and the case's effective parameters. `dembridge run CASE.prm --resume DIR`
-// rebuilds the model from the case, refuses a checkpoint of another case or format version with
-// the reason, restores the state and continues; on one thread the resumed run ends with the same
-// figures as an uninterrupted one, bit for bit.
+// length, dem/core/history_file.h; snapshot lists, cracks), with a header: the format and its
+// version, the dembridge version, the step and time, and the case's effective parameters.
+// `dembridge run CASE.prm --resume DIR` rebuilds the model from the case, refuses a checkpoint of
+// another case or format version with the reason, restores the state and continues; on one thread
+// the resumed run ends with the same figures as an uninterrupted one, bit for bit.
 #include "dem/core/state_archive.h"
 #include <deal.II/base/parameter_handler.h>
 #include <filesystem>
@@ -28,8 +28,9 @@ namespace dembridge::app
 /// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
 /// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
 /// Version 4: FE dynamics runs store running summaries of their energies and zero crossings
-/// instead of the series (one value a step).
-inline constexpr int checkpoint_format_version = 4;
+/// instead of the series (one value a step). Version 5: every dataset carries its CRC-32
+/// (attribute crc32), in HDF5's file format 1.8 (checksummed metadata); the bonds' classes (`bond_class`).
+inline constexpr int checkpoint_format_version = 5;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
 struct CheckpointSettings
@@ -53,6 +54,9 @@ struct CheckpointSettings
 ///  - a fresh run: @p output_dir defaults to output/CASE; a folder that holds the checkpoint of
 ///    an interrupted run is refused (continue it with --resume, or delete the checkpoint), so
 ///    that days of computing are never lost to a forgotten option;
+///  - a resumed checkpoint is read whole first (verify_checkpoint) and the interrupted run's
+///    history file in DIR/.partial checked against it, so that a damaged or incomplete one is
+///    refused before anything is built or staged;
 ///  - refused: checkpoints or --resume in a static FE run (FEM/problem = static: no steps;
 ///    InputError naming the key), a coupled or FE checkpoint of another number of MPI ranks.
 /// Collective on MPI_COMM_WORLD when MPI is running: rank 0 reads the file, every rank throws
@@ -85,6 +89,11 @@ CheckpointHeader make_checkpoint_header(const CheckpointSettings& settings, long
 /// Reads a checkpoint's header; InputError naming the file when it is no HDF5 file, no
 /// dembridge checkpoint or of another format version.
 CheckpointHeader read_checkpoint_header(const std::filesystem::path& file);
+
+/// Reads every dataset of a checkpoint and compares it with its stored checksum; InputError
+/// naming the file and the damaged dataset (or the part of the file's structure HDF5 could not
+/// read: HDF5 checksums its own metadata) when one differs from what was written.
+void verify_checkpoint(const std::filesystem::path& file);
 
 /// Refuses (InputError) a checkpoint whose case differs from @p case_text, naming the first
 /// entries that differ with both values.

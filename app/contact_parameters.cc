@@ -1,5 +1,6 @@
 #include "contact_parameters.h"
 #include "dem_parameters.h"
+#include <algorithm>
 #include <limits>
 
 namespace dembridge::app
@@ -154,5 +155,24 @@ void parse_contact_parameters(ParameterHandler& prm, dem::CaseConfig& c)
   if (!c.walls.empty() && !k.enabled())
     throw dem::InputError("Contacts/model: walls act through contacts; choose linear or "
                           "hertz_mindlin");
+  if (!k.platens.empty())
+  {
+    std::string listed;
+    for (const auto& w : c.walls)
+      listed += (listed.empty() ? "" : ", ") + w.name;
+    listed =
+        listed.empty() ? "the case has no wall: Walls/names is empty" : "Walls/names = " + listed;
+    if (k.platens.size() != 2)
+      throw dem::InputError("Contacts/platens: expected the names of two walls 'lower, upper', "
+                            "got " +
+                            std::to_string(k.platens.size()) + " (" + listed + ")");
+    for (const auto& name : k.platens)
+      if (std::none_of(c.walls.begin(), c.walls.end(),
+                       [&](const dem::WallConfig& w) { return w.name == name; }))
+        throw dem::InputError("Contacts/platens: '" + name + "' is not a wall (" + listed + ")");
+    if (k.platens[0] == k.platens[1])
+      throw dem::InputError("Contacts/platens: '" + k.platens[0] +
+                            "' is named twice; the platens are two walls facing each other");
+  }
 }
 } // namespace dembridge::app

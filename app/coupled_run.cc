@@ -3,20 +3,22 @@
 #include "coupling/measurements.h"
 #include "crack_output.h"
 #include "dem/core/history_file.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/measurements.h"
 #include "dem_parameters.h"
 #include "fem/fem_case.h"
 #include "particle_vtu.h"
 #include "provenance.h"
+#include "result_warnings.h"
 #include "version.h"
 
 #include <deal.II/base/mpi.h>
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <iomanip>
+#include <sstream>
 
 namespace dembridge::app
 {
@@ -66,9 +68,9 @@ class CoupledObserver : public coupling::CoupledRunObserver
 public:
   CoupledObserver(const std::filesystem::path& dir, const OutputSettings& out,
                   CoupledProblem& problem, std::vector<fem::PointProbe>& probes, bool root,
-                  const CheckpointSettings& checkpoint)
+                  const CheckpointSettings& checkpoint, bool failure_law)
       : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir),
-        cracks_(dir, out.write_vtu), checkpoint_(checkpoint)
+        cracks_(dir, out.write_vtu, failure_law), checkpoint_(checkpoint)
   {
     // the load a testing machine would read: the first prescribed motion's group, the force
     // the prescription exerts on it (its reaction, ExplicitSolver::group_force) along the
@@ -93,7 +95,7 @@ public:
     if (!root_)
       return;
     // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
-    history_file_.open(dir / "history.csv.part", checkpoint.resume, (dir / "history.csv").string());
+    history_file_.open(dir / "history.csv.part", checkpoint.resume);
     history_ << std::setprecision(10);
     if (checkpoint.resume)
       return;
@@ -142,6 +144,7 @@ public:
                            a.io("cycle", cycle);
                            cycle_ = unsigned(cycle);
                          });
+    first_step_ = problem.steps();
     if (!root_)
       return;
     std::printf("resumed from %s: step %ld, t = %.6g s\n", checkpoint_.file.string().c_str(),
@@ -251,7 +254,9 @@ public:
                 "%.2e, coupling %.0f %% of the time\n",
                 100 * fraction, problem.steps(), problem.time(), rate, eta,
                 problem.energies().balance_error(),
-                100 * problem.coupling_seconds() / std::max(1e-12, double(problem.steps()) / rate));
+                // the wall time of this process's steps (a resumed run's since its checkpoint)
+                100 * problem.coupling_seconds() /
+                    std::max(1e-12, double(problem.steps() - first_step_) / rate));
     std::fflush(stdout);
   }
 
@@ -273,7 +278,7 @@ public:
     if (!write_vtu_)
       return;
     vtu_.finish();
-    std::ofstream pvd(dir_ / "coupled.pvd");
+    dem::OutputFile pvd(dir_ / "coupled.pvd"); // failures name the file and the reason
     pvd << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n"
@@ -295,8 +300,7 @@ public:
       entry(2, fe_files_[k].second, "continuum");
     }
     pvd << "  </Collection>\n</VTKFile>\n";
-    if (!pvd)
-      throw std::runtime_error((dir_ / "coupled.pvd").string() + ": write failed");
+    pvd.close();
   }
 
 private:
@@ -345,9 +349,10 @@ private:
   ParticleVtuSeries vtu_;
   CrackOutput cracks_;
   dem::HistoryFile history_file_;
-  std::ofstream& history_ = history_file_.stream();
+  std::ostream& history_ = history_file_.stream();
   unsigned int cycle_ = 0;
   std::size_t events_written_ = 0; ///< growth events accounted for in history.csv
+  long first_step_ = 0; ///< the step this process started at (a resumed run's checkpoint's)
   std::vector<std::pair<double, std::string>> fe_files_;
   int load_group_ = -1;
   dem::Vec3 load_direction_ = dem::Vec3::UnitZ();
@@ -414,6 +419,42 @@ nlohmann::json energies_json(const CoupledProblem::Energies& e)
           {"multiplier_work", e.multiplier_work()},
           {"initial", e.initial}};
 }
+
+/// Refuses a case whose continuum supports, driven faces, loads or measurement faces name a
+/// boundary with no face left: the particle region covers it and its cells were cut out
+/// (coupled_mesh.h), so what acts there would act on nothing (collective).
+void check_boundaries_have_faces(const coupling::CoupledCase& c, CoupledProblem& p)
+{
+  std::vector<std::pair<std::string, std::string>> used; // boundary, key
+  for (const auto& b : c.continuum.boundary_constraints)
+    used.emplace_back(b.boundary, "FEM/Boundary conditions/boundaries");
+  for (const auto& d : c.settings.driven)
+    used.emplace_back(d.boundary, "FEM/Boundary conditions/boundaries");
+  for (const auto& l : c.continuum.boundary_forces)
+    used.emplace_back(l.boundary, "FEM/Loads/boundary forces");
+  for (const auto& l : c.continuum.tractions)
+    used.emplace_back(l.boundary, "FEM/Loads/tractions");
+  if (!c.continuum.reaction_boundary.empty())
+    used.emplace_back(c.continuum.reaction_boundary, "FEM/Measurements/reaction boundary");
+  if (!c.continuum.loaded_boundary.empty())
+    used.emplace_back(c.continuum.loaded_boundary, "FEM/Measurements/loaded boundary");
+  auto& cont = p.continuum();
+  for (const auto& [name, key] : used)
+  {
+    const auto id = fem::find_boundary(cont.boundary_names(), name, key);
+    if (cont.boundary_means(id).area > 0)
+      continue;
+    const auto& g = c.settings.geometry;
+    std::ostringstream s;
+    s << key << ": boundary '" << name
+      << "' has no face left in the continuum: the particle region (" << g.particle_lo.x() << ", "
+      << g.particle_lo.y() << ", " << g.particle_lo.z() << " to " << g.particle_hi.x() << ", "
+      << g.particle_hi.y() << ", " << g.particle_hi.z()
+      << ") covers it, and the continuum is cut out there, so nothing would act or be measured "
+         "on it (move the particle region off that face, or load and measure the particles)";
+    throw dem::InputError(s.str());
+  }
+}
 } // namespace
 
 nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
@@ -421,6 +462,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
 {
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   coupling::CoupledCase c = parse_coupled_case(prm);
+  check_explicit_end_time(c.particles.run.end_time);
+  const bool failure_law = c.particles.damage.law.mode != dem::FailureMode::none;
   const OutputSettings out = parse_output_settings(prm);
   auto problem = coupling::make_coupled_problem(c, comm);
   coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
@@ -446,20 +489,23 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   for (const auto& x : c.continuum.deflection_points)
     probes.push_back(p.continuum().make_probe(x, "FEM/Measurements/deflection points"));
 
-  std::vector<std::string> warnings;
+  check_boundaries_have_faces(c, p);
+  nlohmann::json j;
+  j["warnings"] = nlohmann::json::array(); // rank 0's (the particle model's)
+  on_root(comm, [&]
+          { check_bond_coverage(p.model().particles, p.model().bonds.size(), c.particles, j); });
   if (root)
     for (const auto& w : coupling::damage_setup_warnings(c, p))
-    {
-      std::fprintf(stderr, "dembridge: warning: %s\n", w.c_str());
-      warnings.push_back(w);
-    }
+      add_warning(j, w);
 
-  CoupledObserver observer(dir, out, p, probes, root, checkpoint);
+  CoupledObserver observer(dir, out, p, probes, root, checkpoint, failure_law);
   const coupling::CoupledRunResult r = coupling::run_coupled(p, run, observer);
   observer.finish();
 
-  nlohmann::json j;
   j["mode"] = "coupled";
+  // the particles' bonds are co-rotational, the continuum is linear elastic (small strains)
+  j["geometry"] = "particles nonlinear (large displacements and rotations), continuum linear "
+                  "(small displacements)";
   j["n_particles"] = p.n_particles();
   j["n_interface_particles"] = p.n_interface_particles();
   // the continuum now: an adaptive region's growth replaces it
@@ -493,7 +539,6 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     if (bd.reached)
       j["damage_reached_band_time"] = bd.first_time;
   }
-  j["warnings"] = warnings; // rank 0's (the particle model's)
   if (p.adaptive_region())
     add_growth_summary(j, p);
   j["band_width"] = c.settings.geometry.band_width;
@@ -555,7 +600,24 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
       j["gauge_length"] = length;
       j["elongation"] = elongation;
       j["axial_strain"] = elongation / length;
-      j["youngs_modulus"] = -(force * e) / fixed_means.area * length / elongation;
+      if (elongation == 0)
+      {
+        j["youngs_modulus"] = nullptr;
+        add_warning(j,
+                    "youngs_modulus: undefined: the loaded boundary '" + fp.loaded_boundary +
+                        "' did not move relative to the reaction boundary '" +
+                        fp.reaction_boundary + "' (elongation 0); written as null",
+                    root);
+      }
+      else
+      {
+        j["youngs_modulus"] = -(force * e) / fixed_means.area * length / elongation;
+        if (force * e == 0)
+          add_warning(j,
+                      "youngs_modulus: 0: the reaction boundary '" + fp.reaction_boundary +
+                          "' carries no load along the reaction direction (reaction_force 0)",
+                      root);
+      }
     }
   }
   std::string groups_text;
@@ -586,17 +648,10 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     measured["particle_strain"] = {
         {eps[0], eps[1], eps[2]}, {eps[3], eps[4], eps[5]}, {eps[6], eps[7], eps[8]}};
     measured["n_bonds"] = model.bonds.size();
-    // cracks (the particle region's): counts by mode, broken fraction per slab
-    add_crack_summary(measured, observer.cracks(), model.particles, model.bonds, m.stress_layers,
-                      m.stress_layer_axis);
-    if (!observer.cracks().empty())
-    {
-      const auto& first = observer.cracks().front();
-      measured["first_crack"] = {
-          {"time", first.time},
-          {"position", to_json(first.midpoint)},
-          {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
-    }
+    // cracks (the particle region's): counts by mode, the first, broken fraction per slab
+    if (failure_law)
+      add_crack_summary(measured, observer.cracks(), model.particles, model.bonds, m.stress_layers,
+                        m.stress_layer_axis);
     if (!observer.loads().empty()) // peak_load (N), deflection_at_peak (m)
       add_peak_load(measured, observer.loads(), observer.load_displacements());
     measured["fracture_energy"] = p.fracture_energy();

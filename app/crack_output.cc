@@ -1,24 +1,43 @@
 #include "crack_output.h"
 #include "checkpoint.h"
+#include "dem/core/output_file.h"
+#include "dem/measurements/crack_orientation.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/model/groups.h"
 #include "particle_vtu_file.h"
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
+#include <set>
 
 namespace dembridge::app
 {
-CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu)
-    : dir_(std::move(dir)), write_vtu_(write_vtu)
+CrackOutput::CrackOutput(std::filesystem::path dir, bool write_vtu, bool failure_law)
+    : dir_(std::move(dir)), write_vtu_(write_vtu), failure_law_(failure_law)
 {
 }
 
 void CrackOutput::update(const dem::ExplicitSolver& s)
 {
   const auto& all = s.cracks();
-  cracks_.insert(cracks_.end(), all.begin() + long(cracks_.size()), all.end());
+  const std::size_t from = cracks_.size();
+  cracks_.insert(cracks_.end(), all.begin() + long(from), all.end());
+  classify(s, from);
+}
+
+void CrackOutput::classify(const dem::ExplicitSolver& s, std::size_t from)
+{
+  const dem::BondStore& b = s.bonds();
+  const dem::ParticleStore& p = s.particles();
+  has_classes_ = !b.bond_class.empty(), has_grains_ = !p.grain.empty();
+  classes_.resize(from), intergranular_.resize(from);
+  for (std::size_t k = from; k < cracks_.size(); ++k)
+  {
+    const std::size_t bond = cracks_[k].bond; // the solver's order
+    classes_.push_back(has_classes_ ? std::uint8_t(b.bond_class[bond]) : 0);
+    intergranular_.push_back(has_grains_ &&
+                             p.grain[std::size_t(b.a[bond])] != p.grain[std::size_t(b.b[bond])]);
+  }
 }
 
 void CrackOutput::visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s)
@@ -32,11 +51,12 @@ void CrackOutput::visit_state(dem::StateArchive& a, const dem::ExplicitSolver& s
   if (taken > s.cracks().size())
     throw dem::InputError(a.where() + "taken: more cracks than the solver's log holds");
   cracks_.assign(s.cracks().begin(), s.cracks().begin() + long(taken));
+  classify(s, 0);
 }
 
 void CrackOutput::snapshot(double time, long step)
 {
-  if (!write_vtu_)
+  if (!write_vtu_ || !failure_law_)
     return;
   const std::size_t n = cracks_.size();
   std::vector<dem::Vec3> points(n), axis(n);
@@ -60,6 +80,8 @@ void CrackOutput::snapshot(double time, long step)
   file.point_data("particle_b", b);
   file.point_data("bond", bond);
   file.point_data("axis", axis_values, 3);
+  if (has_classes_)
+    file.cell_data("class", classes_);
   char name[40];
   std::snprintf(name, sizeof name, "cracks_%06zu.vtu", files_.size());
   file.write(dir_ / name, time, step);
@@ -68,20 +90,28 @@ void CrackOutput::snapshot(double time, long step)
 
 void CrackOutput::finish() const
 {
+  if (!failure_law_)
+    return;
   const std::filesystem::path file = dir_ / "cracks.csv", part = dir_ / "cracks.csv.part";
   {
-    std::ofstream out(part);
-    if (!out)
-      throw std::runtime_error(file.string() + ": cannot write");
-    out << "time,x,y,z,axis_x,axis_y,axis_z,mode,energy,particle_a,particle_b,bond\n"
+    dem::OutputFile out(part); // failures name the file and the reason
+    out << "time,x,y,z,axis_x,axis_y,axis_z,mode,energy,particle_a,particle_b,bond"
+        << (has_classes_ ? ",class" : "") << (has_grains_ ? ",grains" : "") << '\n'
         << std::setprecision(10);
-    for (const auto& c : cracks_)
+    for (std::size_t k = 0; k < cracks_.size(); ++k)
+    {
+      const auto& c = cracks_[k];
       out << c.time << ',' << c.midpoint.x() << ',' << c.midpoint.y() << ',' << c.midpoint.z()
           << ',' << c.axis.x() << ',' << c.axis.y() << ',' << c.axis.z() << ','
           << (c.mode == dem::CrackMode::shear ? "shear" : "tension") << ',' << c.energy << ','
-          << c.a << ',' << c.b << ',' << c.bond << '\n';
-    if (!out)
-      throw std::runtime_error(file.string() + ": write failed");
+          << c.a << ',' << c.b << ',' << c.bond;
+      if (has_classes_)
+        out << ',' << dem::bond_class_names[classes_[k]];
+      if (has_grains_)
+        out << ',' << (intergranular_[k] ? "intergranular" : "transgranular");
+      out << '\n';
+    }
+    out.close();
   }
   std::filesystem::rename(part, file);
   if (write_vtu_)
@@ -90,9 +120,38 @@ void CrackOutput::finish() const
   }
 }
 
+void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p, const dem::BondStore& b)
+{
+  if (b.bond_class.empty()) // no microstructure (dem/bonds/bond_class.h)
+    return;
+  std::array<long, dem::bond_class_count> all{}, broken{};
+  long intergranular = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+  {
+    ++all[std::size_t(b.bond_class[k])];
+    if (b.state[k] != dem::BondState::broken)
+      continue;
+    ++broken[std::size_t(b.bond_class[k])];
+    intergranular +=
+        !p.grain.empty() && p.grain[std::size_t(b.a[k])] != p.grain[std::size_t(b.b[k])];
+  }
+  for (std::size_t c = 0; c < dem::bond_class_count; ++c)
+  {
+    const std::string name(dem::bond_class_names[c]);
+    j["bonds_per_class"][name] = all[c];
+    j["broken_bonds_per_class"][name] = broken[c];
+  }
+  if (!p.grain.empty())
+  {
+    j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
+    j["broken_bonds_intergranular"] = intergranular;
+    j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+  }
+}
+
 void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cracks,
                        const dem::ParticleStore& p, const dem::BondStore& b, int layers,
-                       int layer_axis)
+                       int layer_axis, int load_axis)
 {
   long tension = 0;
   for (const auto& c : cracks)
@@ -101,6 +160,34 @@ void add_crack_summary(nlohmann::json& j, const std::vector<dem::CrackEvent>& cr
   j["broken_bonds_tension"] = tension;
   j["broken_bonds_shear"] = long(cracks.size()) - tension;
   j["broken_bond_fraction"] = b.size() > 0 ? double(cracks.size()) / double(b.size()) : 0.0;
+  add_bond_class_summary(j, p, b);
+  if (load_axis >= 0 && b.has_failure())
+  {
+    // against the load axis, and against each axis (a confined test's splitting cracks open
+    // across the free axis, not the confined one: the angle from the load alone misses it)
+    const dem::CrackOrientation h = dem::crack_orientation(cracks, load_axis, 9);
+    auto& o = j["crack_orientation"];
+    o = {{"load_axis", std::string(1, "xyz"[h.axis])},
+         {"normal_angle_edges_deg", h.edges},
+         {"isotropic_fraction", h.isotropic_fraction},
+         {"counts", h.counts},
+         {"fraction", h.fraction},
+         {"mean_normal_angle_deg", h.mean_angle},
+         {"along_load_fraction", h.along_load_fraction}};
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const dem::CrackOrientation a = dem::crack_orientation(cracks, axis, 9);
+      o["from_axis"][std::string(1, "xyz"[axis])] = {
+          {"counts", a.counts}, {"fraction", a.fraction}, {"mean_normal_angle_deg", a.mean_angle}};
+    }
+  }
+  if (!cracks.empty())
+  {
+    const auto& first = cracks.front();
+    j["first_crack"] = {{"time", first.time},
+                        {"position", {first.midpoint.x(), first.midpoint.y(), first.midpoint.z()}},
+                        {"mode", first.mode == dem::CrackMode::tension ? "tension" : "shear"}};
+  }
   if (layers > 0)
   {
     const auto [lo, hi] = dem::reference_extent(p);

@@ -1,7 +1,9 @@
 #include "dem_parameters.h"
 #include "contact_parameters.h"
 #include "damage_parameters.h"
+#include "microstructure_parameters.h"
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -174,7 +176,9 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("modulus groups", "", Anything(),
                     "'fixed, loaded': end groups of a uniaxial test; gives youngs_modulus (thesis "
                     "eq. 64) and the Poisson's ratios from the bounding particles (eq. 65).");
-  prm.declare_entry("modulus axis", "x", Selection("x|y|z"), "Loading axis of the uniaxial test.");
+  prm.declare_entry("modulus axis", "x", Selection("x|y|z"),
+                    "Loading axis of the uniaxial test; summary.json's crack_orientation gives the "
+                    "angles of the crack normals from it.");
   prm.declare_entry("flexural groups", "", Anything(),
                     "'pin, roller, loaded, bottom': three-point bending groups (span along x, load "
                     "along z); gives flexural_modulus by thesis eq. 67 and 69.");
@@ -208,6 +212,7 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.leave_subsection();
 
   declare_damage_parameters(prm);
+  declare_microstructure_parameters(prm);
 }
 
 void declare_group_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
@@ -241,11 +246,14 @@ void declare_load_parameters(ParameterHandler& prm, const std::vector<std::strin
     prm.enter_subsection("Load " + name);
     prm.declare_entry("group", "", Anything(), "Group the load acts on.");
     prm.declare_entry("type", "force",
-                      Selection("force|moment|velocity|angular velocity|displacement"),
+                      Selection("force|moment|velocity|angular velocity|displacement|pressure"),
                       "force/moment: group total (N, N·m) shared equally; velocity/angular "
                       "velocity: prescribed per particle (m/s, rad/s), explicit solver only; "
                       "displacement: prescribed per particle (m), reached at the end of the ramp "
-                      "and held, read the same by the static and explicit solvers.");
+                      "and held, read the same by the static and explicit solvers; pressure: a "
+                      "normal stress on a face group, (pressure x ramp + ratio x the stress of "
+                      "the ratio load) x area along value (the direction it pushes), shared "
+                      "equally: a confining stress, held or in proportion to the axial one.");
     prm.declare_entry("ramp profile", "linear", Selection("linear|smooth"),
                       "Displacement loads: linear (constant velocity over the ramp) or smooth "
                       "(3 s^2 - 2 s^3: zero velocity at both ends).");
@@ -253,6 +261,16 @@ void declare_load_parameters(ParameterHandler& prm, const std::vector<std::strin
     prm.declare_entry("components", "x, y, z", List(Selection("x|y|z"), 1, 3),
                       "Prescribed components (velocity and displacement types).");
     prm.declare_entry("ramp time", "0", Double(0), "Linear ramp from 0 over this time (s).");
+    prm.declare_entry("pressure", "0", Double(),
+                      "Pressure loads: the confining stress p_0 (Pa), ramped as a force.");
+    prm.declare_entry("ratio", "0", Double(),
+                      "Pressure loads: R, the share of the ratio load's stress added to p_0 "
+                      "(sigma_2 = p_0 + R sigma_1), followed step by step.");
+    prm.declare_entry("ratio load", "", Anything(),
+                      "Pressure loads with a ratio: the displacement or velocity load whose "
+                      "support reaction along its value, over its area, is sigma_1.");
+    prm.declare_entry("area", "0", Double(0),
+                      "Face area (m^2): a pressure's, or that of a load a pressure follows.");
     prm.declare_entry("end time", "inf", Anything(),
                       "Time (s) at which the load is removed / the DOFs released; 'inf': never.");
     prm.leave_subsection();
@@ -293,6 +311,16 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     s.remove_box_max = get_vec3(prm, "remove box max");
     if (s.kind == K::file && s.file.empty())
       throw dem::InputError("Particles/file: source = file needs a file name");
+    // the path tried, absolute: a relative one is resolved against the working directory,
+    // which `dembridge run` sets to the case file's folder
+    if (s.kind == K::file)
+    {
+      const auto tried = std::filesystem::absolute(s.file).lexically_normal();
+      std::error_code ec;
+      if (!std::filesystem::exists(tried, ec))
+        throw dem::InputError("Particles/file: '" + s.file + "' does not exist (looked for " +
+                              tried.string() + ")");
+    }
   }
   prm.leave_subsection();
 
@@ -411,7 +439,12 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
                    : type == "moment"       ? dem::LoadKind::moment
                    : type == "velocity"     ? dem::LoadKind::velocity
                    : type == "displacement" ? dem::LoadKind::displacement
+                   : type == "pressure"     ? dem::LoadKind::pressure
                                             : dem::LoadKind::angular_velocity;
+    lc.load.pressure = prm.get_double("pressure");
+    lc.load.ratio = prm.get_double("ratio");
+    lc.load.area = prm.get_double("area");
+    lc.ratio_load = prm.get("ratio load");
     lc.load.profile =
         prm.get("ramp profile") == "smooth" ? dem::RampProfile::smooth : dem::RampProfile::linear;
     lc.load.value = get_vec3(prm, "value");
@@ -466,6 +499,7 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
   prm.leave_subsection();
   c.damage = parse_damage_parameters(prm);
+  c.microstructure = parse_microstructure_parameters(prm, c.bonds.material, c.damage);
   return c;
 }
 

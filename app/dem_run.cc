@@ -3,6 +3,7 @@
 #include "contact_output.h"
 #include "crack_output.h"
 #include "dem/core/history_file.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
 #include "dem/measurements/measurements.h"
 #include "dem/measurements/particle_stress.h"
@@ -10,18 +11,20 @@
 #include "dem/solvers/static_solver.h"
 #include "dem_history.h"
 #include "dem_parameters.h"
+#include "dem_run_ranks.h"
 #include "dem_static_run.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/bond_network_solver.h"
 #endif
 #include "particle_vtu.h"
 #include "provenance.h"
+#include "result_warnings.h"
 #include "version.h"
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -30,6 +33,12 @@ namespace dembridge::app
 {
 namespace
 {
+/// Rotations (rad) above which a linear (static) solution is flagged: it differs from the
+/// large-rotation one by about half the rotation squared (a cantilever's tip deflection against
+/// the explicit solver's: 1.2e-5 at 5.1e-3 rad, 1.4e-4 at 0.017 rad, 1.2e-3 at 0.051 rad), 5e-5
+/// here.
+constexpr double max_linear_rotation = 1e-2;
+
 nlohmann::json to_json(const dem::Vec3& v)
 {
   return {v.x(), v.y(), v.z()};
@@ -50,9 +59,7 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
 {
   const std::filesystem::path part = file.string() + ".part";
   {
-    std::ofstream out(part);
-    if (!out)
-      throw std::runtime_error(file.string() + ": cannot write");
+    dem::OutputFile out(part); // failures name the file and the reason
     out << "id,x,y,z,radius,s_xx,s_yy,s_zz,s_yz,s_xz,s_xy\n" << std::setprecision(10);
     // rows in the user's particle numbering (the stores are in spatial order, renumbering.h)
     std::vector<std::size_t> by_id(p.size());
@@ -67,8 +74,7 @@ void write_particle_stresses(const std::filesystem::path& file, const dem::Parti
           << t(0, 0) << ',' << t(1, 1) << ',' << t(2, 2) << ',' << 0.5 * (t(1, 2) + t(2, 1)) << ','
           << 0.5 * (t(0, 2) + t(2, 0)) << ',' << 0.5 * (t(0, 1) + t(1, 0)) << '\n';
     }
-    if (!out)
-      throw std::runtime_error(file.string() + ": write failed");
+    out.close();
   }
   std::filesystem::rename(part, file);
 }
@@ -78,14 +84,15 @@ class CaseObserver : public dem::RunObserver
 {
 public:
   CaseObserver(const std::filesystem::path& dir, const OutputSettings& out, const dem::Model& model,
-               const CheckpointSettings& checkpoint)
+               const CheckpointSettings& checkpoint, bool failure_law)
       : model_(model), vtu_(dir, group_names(model)), write_vtu_(out.write_vtu), dir_(dir),
-        history_path_(dir / "history.csv"), cracks_(dir, out.write_vtu), checkpoint_(checkpoint)
+        history_path_(dir / "history.csv"), cracks_(dir, out.write_vtu, failure_law),
+        checkpoint_(checkpoint)
   {
     // Written under a temporary name and renamed when the run completes, so an interrupted
     // run never leaves a history that looks complete.
     // A resume keeps the interrupted run's file; visit_state cuts it back to the checkpoint.
-    history_file_.open(dir / "history.csv.part", checkpoint.resume, history_path_.string());
+    history_file_.open(dir / "history.csv.part", checkpoint.resume);
     if (!checkpoint.resume)
       history_ << history_header(model, contacts_);
     history_ << std::setprecision(10);
@@ -99,13 +106,21 @@ public:
   }
   const std::vector<double>& axial_displacements() const { return du_; }
   /// Records the load a three-point bending specimen carries (the supports' vertical
-  /// reactions) against the loaded group's downward displacement.
-  void track_flexural(int pin, int roller, int loaded)
+  /// reactions) against the midspan deflection: the mean downward displacement of the loaded
+  /// and the bottom groups (thesis eq. 69's delta, as flexural_response's).
+  void track_flexural(int pin, int roller, int loaded, int bottom)
   {
-    pin_ = pin, roller_ = roller, top_ = loaded;
+    pin_ = pin, roller_ = roller, top_ = loaded, bottom_ = bottom;
   }
   const std::vector<double>& flexural_loads() const { return flex_load_; }
   const std::vector<double>& flexural_deflections() const { return flex_u_; }
+  /// Records of the flexural history before the first bond broke: its elastic part.
+  std::size_t flexural_records_intact() const
+  {
+    return std::size_t(std::find_if(flex_broken_.begin(), flex_broken_.end(),
+                                    [](std::int64_t n) { return n > 0; }) -
+                       flex_broken_.begin());
+  }
   const CrackOutput& cracks() const { return cracks_; }
   /// Axial load history: the loaded end's reaction, or (force control) minus the fixed end's.
   const std::vector<double>& axial_forces(bool from_fixed_end) const
@@ -136,7 +151,9 @@ public:
     if (top_ >= 0)
     {
       flex_load_.push_back(s.group_force(pin_).z() + s.group_force(roller_).z());
-      flex_u_.push_back(-s.group_mean_displacement(top_).z());
+      flex_u_.push_back(
+          -0.5 * (s.group_mean_displacement(top_).z() + s.group_mean_displacement(bottom_).z()));
+      flex_broken_.push_back(s.n_broken_bonds());
     }
     cracks_.update(s);
     const auto& e = s.energy();
@@ -214,6 +231,7 @@ private:
     a.io("kinetic_share", share);
     a.io("flexural_load", flex_load_);
     a.io("flexural_deflection", flex_u_);
+    a.io("flexural_broken_bonds", flex_broken_);
     long history_bytes = a.loading() ? 0 : long(history_file_.durable_size());
     a.io("history_bytes", history_bytes);
     vtu_.visit_state(a);
@@ -222,6 +240,8 @@ private:
       return;
     if (share_time.size() != share.size())
       throw dem::InputError(a.where() + "kinetic_share: not as long as its times");
+    if (flex_broken_.size() != flex_load_.size())
+      throw dem::InputError(a.where() + "flexural_broken_bonds: not as long as 'flexural_load'");
     kinetic_share_.clear();
     for (std::size_t k = 0; k < share.size(); ++k)
       kinetic_share_.emplace_back(share_time[k], share[k]);
@@ -237,12 +257,13 @@ private:
   std::filesystem::path dir_;
   std::filesystem::path history_path_;
   dem::HistoryFile history_file_;
-  std::ofstream& history_ = history_file_.stream();
+  std::ostream& history_ = history_file_.stream();
   int fixed_ = -1, loaded_ = -1, axis_ = 0;
   std::vector<double> du_, force_, fixed_force_;
   std::vector<std::pair<double, double>> kinetic_share_;
-  int pin_ = -1, roller_ = -1, top_ = -1;
+  int pin_ = -1, roller_ = -1, top_ = -1, bottom_ = -1;
   std::vector<double> flex_load_, flex_u_;
+  std::vector<std::int64_t> flex_broken_; ///< broken bonds at each flexural record
   CrackOutput cracks_;
   CheckpointSettings checkpoint_;
 };
@@ -252,6 +273,9 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
                             CheckpointSettings checkpoint)
 {
   dem::CaseConfig config = parse_dem_case(prm);
+  if (!config.run.static_solver)
+    check_explicit_end_time(config.run.end_time, config.particles.save_file);
+  const bool failure_law = config.damage.law.mode != dem::FailureMode::none;
   // per-bond force records feed the static run's figures only (ParaView bond files evaluate
   // each bond on demand)
   config.run.bond_force_records = config.run.static_solver;
@@ -264,6 +288,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
   dem::Model model = dem::build_model(config);
+  if (run_dem_case_on_other_rank(config, model, checkpoint)) // mpirun -np N: rank 0 writes
+    return {};
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",
               model.particles.size(), model.bonds.size(), prm.get({"Bonds"}, "model").c_str(),
@@ -271,9 +297,15 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   std::fflush(stdout);
 
   nlohmann::json j;
+  j["warnings"] = nlohmann::json::array();
+  check_bond_coverage(model.particles, model.bonds.size(), config, j);
+  if (!config.run.static_solver && config.run.end_time == 0) // check_explicit_end_time let it by
+    add_warning(j, "simulated_time: end time 0: the packing was written (Particles/save file) "
+                   "and nothing was simulated; the figures are those of the unloaded specimen");
   dem::RunResult r;
   std::vector<double> axial_du, axial_loaded, axial_fixed; // explicit runs: load history
   std::vector<double> flexural_load, flexural_u;
+  std::size_t flexural_intact = 0; // records of the flexural history before the first break
   std::vector<dem::CrackEvent> cracks;
   if (config.run.static_solver)
   {
@@ -302,6 +334,22 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       r.deflection_vector = dem::mean_displacement(model.particles, g);
       r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
     }
+    // the static solver is linear in the displacements and rotations (static_solver.h)
+    j["geometry"] = "linear (small displacements and rotations)";
+    j["max_rotation"] = dem::largest_rotation(model.particles, model.bonds);
+    if (j["max_rotation"].get<double>() > max_linear_rotation)
+    {
+      char line[400];
+      std::snprintf(line, sizeof line,
+                    "max_rotation: %.3g rad: the static solver is linear (small rotations), and "
+                    "its figures differ from the large-rotation solution by about half the "
+                    "rotation squared (%.2g) here; Simulation/solver = explicit follows large "
+                    "rotations",
+                    j["max_rotation"].get<double>(),
+                    0.5 * std::pow(j["max_rotation"].get<double>(), 2));
+      add_warning(j, line);
+    }
+    add_bond_class_summary(j, model.particles, model.bonds);
     j["solver"] = {{"type", "static"},
                    {"method", st.method},
                    {"iterations", st.iterations},
@@ -313,7 +361,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   }
   else
   {
-    CaseObserver observer(dir, out, model, checkpoint);
+    CaseObserver observer(dir, out, model, checkpoint, failure_law);
     if (!config.measure.modulus_fixed_group.empty())
       observer.track_axial(
           model.group_index(config.measure.modulus_fixed_group, "Measurements/modulus groups"),
@@ -324,7 +372,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
       const auto& f = config.measure.flexural_groups;
       const auto where = "Measurements/flexural groups";
       observer.track_flexural(model.group_index(f[0], where), model.group_index(f[1], where),
-                              model.group_index(f[2], where));
+                              model.group_index(f[2], where), model.group_index(f[3], where));
     }
     dem::RunSchedule schedule;
     schedule.record_interval = out.history_interval;
@@ -333,20 +381,26 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     schedule.checkpoint_wall_interval = checkpoint.file.empty() ? 0.0 : checkpoint.wall_interval;
     if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
       schedule.kill_after_step = std::atol(kill);
-    r = dem::run_explicit(model, config, observer, schedule);
+    r = run_explicit_on_ranks(model, config, observer, schedule);
     observer.finish();
     axial_du = observer.axial_displacements();
     axial_loaded = observer.axial_forces(false);
     axial_fixed = observer.axial_forces(true);
     flexural_load = observer.flexural_loads();
     flexural_u = observer.flexural_deflections();
+    flexural_intact = observer.flexural_records_intact();
     cracks = observer.cracks().cracks();
-    add_crack_summary(j, cracks, model.particles, model.bonds, config.measure.stress_layers,
-                      config.measure.stress_layer_axis);
+    if (failure_law)
+      add_crack_summary(j, cracks, model.particles, model.bonds, config.measure.stress_layers,
+                        config.measure.stress_layer_axis, config.measure.modulus_axis);
+    else
+      add_bond_class_summary(j, model.particles, model.bonds);
     const auto [share_max, share_final] = observer.kinetic_share();
     j["kinetic_energy_share_max"] = share_max;
     j["kinetic_energy_share_final"] = share_final;
     j["solver"] = {{"type", "explicit"}};
+    // co-rotational bonds, rotations integrated exactly (bond_kernel.h, orientation_update.h)
+    j["geometry"] = "nonlinear (large displacements and rotations)";
     if (checkpoint.resume)
       j["resumed_from"] = {{"file", checkpoint.file.string()},
                            {"step", checkpoint.resumed_step},
@@ -355,7 +409,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["steps"] = r.steps;
     j["simulated_time"] = r.time;
     j["bond_updates_per_second"] =
-        r.wall_seconds > 0 ? double(r.steps) * double(model.bonds.size()) / r.wall_seconds : 0.0;
+        r.wall_seconds > 0 ? double(r.steps_made) * double(model.bonds.size()) / r.wall_seconds
+                           : 0.0;
     j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
                    {"damping", r.energy.damping},     {"external_work", r.energy.external},
                    {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
@@ -417,7 +472,8 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   j["n_bonds"] = model.bonds.size();
   j["mean_coordination"] = mean_coordination;
   j["critical_time_step"] = model.critical.critical();
-  j["critical_time_step_eq48"] = model.critical.thesis_eq48;
+  if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
+    j["critical_time_step_eq48"] = model.critical.thesis_eq48;
   j["stop_reason"] = r.stop_reason;
   j["solver_seconds"] = r.wall_seconds;
   if (r.deflection)
@@ -434,7 +490,11 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
         model.groups[model.group_index(m.modulus_loaded_group, "Measurements/modulus groups")],
         m.modulus_axis);
     const std::string axes = "xyz";
-    j["youngs_modulus"] = a.youngs_modulus;
+    // a specimen that broke: its final state is past the peak (a secant through the damage),
+    // so E comes from the elastic part of the curve and the final ratios keep their own names
+    const bool broke = !cracks.empty();
+    const std::string nu = broke ? "final_poisson_ratio_" : "poisson_ratio_";
+    j[broke ? "final_secant_modulus" : "youngs_modulus"] = a.youngs_modulus;
     j["axial_stress"] = a.stress;
     j["axial_strain"] = a.strain;
     j["axial_force"] = a.force;
@@ -442,21 +502,52 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["gauge_length"] = a.gauge_length;
     for (int d = 0; d < 3; ++d)
       if (d != a.axis)
-        j[std::string("poisson_ratio_") + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
+        j[nu + axes[a.axis] + axes[d]] = a.poisson_ratio[d];
+    if (a.strain == 0)
+    {
+      const std::string key = broke ? "final_secant_modulus" : "youngs_modulus";
+      j[key] = nullptr;
+      for (int d = 0; d < 3; ++d)
+        if (d != a.axis)
+          j[nu + axes[a.axis] + axes[d]] = nullptr;
+      add_warning(j, key +
+                         ": undefined, and the Poisson's ratios with it: the end groups "
+                         "(Measurements/modulus groups) did not move apart along " +
+                         axes[a.axis] + " (axial strain 0); written as null");
+    }
+    else if (a.force == 0 && !broke)
+      add_warning(j, "youngs_modulus: 0: the end groups (Measurements/modulus groups) carry no "
+                     "axial load (reaction 0)");
     if (axial_du.size() >= 3)
     {
       const auto& force = a.force_controlled ? axial_fixed : axial_loaded;
-      // a specimen that broke: E from the elastic part of the curve (up to half the peak load)
+      // E from the elastic part of the curve (up to half the peak load) when bonds broke
       const std::size_t n_fit =
-          cracks.empty() ? force.size() : std::max<std::size_t>(3, dem::records_before(force, 0.5));
+          broke ? std::max<std::size_t>(3, dem::records_before(force, 0.5)) : force.size();
       const auto fit = dem::fit_youngs_modulus({axial_du.begin(), axial_du.begin() + long(n_fit)},
                                                {force.begin(), force.begin() + long(n_fit)}, a);
       j["youngs_modulus_fit"] = fit.youngs_modulus;
       j["youngs_modulus_fit_points"] = fit.points;
+      if (broke)
+        j["youngs_modulus"] = fit.youngs_modulus;
+      if (fit.points < 2 || fit.youngs_modulus == 0)
+      {
+        const std::string key = broke ? "youngs_modulus" : "youngs_modulus_fit";
+        j[key] = nullptr;
+        add_warning(j, key + ": undefined: the load history has no rising part to fit (" +
+                           std::to_string(fit.points) + " records); written as null");
+      }
       // the load transmitted through the specimen, read at the fixed end as a testing machine's
       // load cell does: the driven end's reaction also carries the local damping's drag on the
       // moving particles (5 % at the peak of tension_failure.prm), and its noise
       add_peak_stress(j, axial_fixed, axial_du, a.area, a.gauge_length);
+    }
+    else if (broke)
+    {
+      j["youngs_modulus"] = nullptr;
+      add_warning(j, "youngs_modulus: undefined: bonds broke and the load history has " +
+                         std::to_string(axial_du.size()) +
+                         " records, too few to fit the elastic part (Output/history interval)");
     }
     // RVE = the specimen between the planes where the end loads act (gauge length x area).
     j["boundary_stress"] = a.stress;
@@ -489,15 +580,54 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     j["load_length"] = f.load_length;
     j["midspan_deflection"] = f.deflection;
     j["bottom_deflection"] = f.bottom_deflection;
-    j["flexural_modulus_point_load"] = f.flexural_modulus_point;
-    j["flexural_modulus"] = f.flexural_modulus;
-    j["flexural_modulus_bottom"] = f.flexural_modulus_bottom;
+    if (!cracks.empty())
+    {
+      // past the peak the final ratio is a secant through the damage: E_f (eq. 69) from the
+      // elastic part of the load-deflection curve, the records before the first bond broke (or
+      // up to half the peak load when a weak bond broke earlier)
+      j["final_secant_modulus"] = f.flexural_modulus;
+      const std::size_t n_fit = std::max(flexural_intact, dem::records_before(flexural_load, 0.5));
+      const auto fit = dem::fit_flexural_modulus(
+          {flexural_u.begin(), flexural_u.begin() + long(n_fit)},
+          {flexural_load.begin(), flexural_load.begin() + long(n_fit)}, f);
+      j["flexural_modulus_fit_points"] = fit.points;
+      j["flexural_modulus"] = fit.youngs_modulus;
+      if (fit.points < 2 || fit.youngs_modulus == 0)
+      {
+        j["flexural_modulus"] = nullptr;
+        add_warning(j, "flexural_modulus: undefined: bonds broke and the load history has no "
+                       "rising part to fit (" +
+                           std::to_string(fit.points) +
+                           " records; Output/history interval); written as null");
+      }
+    }
+    else if (!(f.deflection > 0))
+    {
+      j["flexural_modulus"] = nullptr;
+      add_warning(j, "flexural_modulus: undefined: the midspan did not deflect (Measurements/"
+                     "flexural groups: the loaded and bottom groups); written as null");
+    }
+    else
+    {
+      j["flexural_modulus_point_load"] = f.flexural_modulus_point;
+      j["flexural_modulus"] = f.flexural_modulus;
+      j["flexural_modulus_bottom"] = f.flexural_modulus_bottom;
+      if (f.load == 0)
+        add_warning(j, "flexural_modulus: 0: the supports (Measurements/flexural groups) carry "
+                       "no load (reaction 0)");
+    }
     add_peak_load(j, flexural_load, flexural_u);
   }
   if (r.natural_frequency)
     j["natural_frequency"] = *r.natural_frequency;
   else if (!config.measure.frequency_group.empty())
+  {
     j["natural_frequency"] = nullptr;
+    add_warning(j, "natural_frequency: undefined: group '" + config.measure.frequency_group +
+                       "' (Measurements/frequency group) did not swing through its mean at least "
+                       "three times in the run (a longer Simulation/end time, or less damping); "
+                       "written as null");
+  }
   auto& groups = j["groups"];
   for (const auto& g : model.groups)
   {

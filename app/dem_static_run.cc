@@ -1,10 +1,10 @@
 #include "dem_static_run.h"
 #include "contact_output.h"
+#include "dem/core/output_file.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem_history.h"
 #include "particle_vtu.h"
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 
 namespace dembridge::app
@@ -61,9 +61,7 @@ StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config
   const double end = config.run.end_time;
   const ContactOutput contacts(model);
   const std::filesystem::path part = dir / "history.csv.part";
-  std::ofstream history(part);
-  if (!history)
-    throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
+  dem::OutputFile history(part); // failures name the file and the reason
   history << history_header(model, contacts) << std::setprecision(10);
   ParticleVtuSeries vtu(dir, group_names(model));
   for (int k = 1; k <= n; ++k)
@@ -93,8 +91,6 @@ StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config
       vtu.write(model.particles, model.bonds, t, k);
   }
   history.close();
-  if (!history)
-    throw std::runtime_error((dir / "history.csv").string() + ": write failed");
   std::filesystem::rename(part, dir / "history.csv");
   if (out.write_vtu)
     vtu.finish();

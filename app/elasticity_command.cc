@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <deal.II/base/mpi.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -82,8 +81,6 @@ CLI::App* add_elasticity_command(CLI::App& app, ElasticityOptions& o)
 json measure_elasticity(const ElasticityOptions& o)
 {
   const std::string case_name = fs::path(o.case_file).filename().string();
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-    throw std::runtime_error("elasticity: runs on one MPI rank (the static solver is serial)");
   if (!(o.core_margin >= 0) || !std::isfinite(o.core_margin))
     throw std::runtime_error("--core-margin: must be a non-negative number of diameters");
   if (!(o.boundary_thickness > 0) || !std::isfinite(o.boundary_thickness))

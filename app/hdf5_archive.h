@@ -1,12 +1,20 @@
 #pragma once
-// The checkpoint's HDF5 side (docs/checkpoint.md): a scoped HDF5 handle and dem::StateArchive
-// on an open HDF5 file. Included by checkpoint.cc only (HDF5's C API stays out of the rest of
-// the app).
+// The checkpoint's HDF5 side (docs/checkpoint.md): a scoped HDF5 handle, the checksums and
+// dem::StateArchive on an open HDF5 file. Included by checkpoint.cc only (HDF5's C API stays out
+// of the rest of the app).
+//
+// Integrity: every dataset carries the CRC-32 (zlib's) of its bytes as they lie in the file in an
+// attribute `crc32`, checked whenever it is read; the structure around them (superblock, object
+// headers with their attributes, group indexes) is HDF5's file format 1.8, whose metadata HDF5
+// itself checksums and refuses when damaged. So no byte a resume reads is taken unchecked.
 #include "dem/core/state_archive.h"
+#include <bit>
 #include <hdf5.h>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+#include <zlib.h>
 
 namespace dembridge::app::hdf5
 {
@@ -30,6 +38,8 @@ public:
   Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
   hid_t get() const { return id_; }
   bool ok() const { return id_ >= 0; }
+  /// The handle, no longer closed here (the caller closes it and checks the result).
+  hid_t release() { return std::exchange(id_, -1); }
 
 private:
   hid_t id_;
@@ -40,6 +50,69 @@ inline void quiet_hdf5()
 {
   static const bool done = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
   (void)done;
+}
+
+/// Why the last HDF5 call failed, from its error stack: the operating system's reason where the
+/// failure was a read or write of the file ("No space left on device"), else HDF5's innermost
+/// message ("incorrect metadata checksum after all read attempts"); empty if there is none.
+inline std::string hdf5_reason()
+{
+  std::string reason;
+  auto innermost = [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t
+  {
+    if (n == 0 && e->desc)
+      *static_cast<std::string*>(out) = e->desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, &reason);
+  // the POSIX driver's messages: "... errno = 28, error message = 'No space left on device', ..."
+  const std::string key = "error message = '";
+  if (const auto b = reason.find(key); b != std::string::npos)
+    if (const auto e = reason.find('\'', b + key.size()); e != std::string::npos)
+      return reason.substr(b + key.size(), e - b - key.size());
+  return reason;
+}
+
+/// " (REASON)" for a message, or nothing.
+inline std::string with_reason(const std::string& reason)
+{
+  return reason.empty() ? std::string() : " (" + reason + ")";
+}
+
+/// CRC-32 (zlib's, as Python's zlib.crc32) of @p bytes bytes.
+inline std::uint32_t crc32_of(const void* data, std::size_t bytes)
+{
+  return std::uint32_t(crc32_z(crc32_z(0L, Z_NULL, 0), static_cast<const Bytef*>(data), bytes));
+}
+
+// why: the checksums are of the bytes in the file, little-endian, taken from memory as they are
+static_assert(std::endian::native == std::endian::little, "checksums of memory in file order");
+
+inline constexpr const char* checksum_attribute = "crc32";
+
+/// Attaches the checksum attribute to @p set; false if HDF5 failed.
+inline bool write_checksum(hid_t set, std::uint32_t crc)
+{
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(
+      H5Acreate2(set, checksum_attribute, H5T_STD_U32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
+  return attr.ok() && H5Awrite(attr.get(), H5T_NATIVE_UINT32, &crc) >= 0;
+}
+
+/// Compares the checksum attribute of @p set with @p crc: "" when they agree, else why not.
+inline std::string checksum_mismatch(hid_t set, std::uint32_t crc)
+{
+  if (H5Aexists(set, checksum_attribute) <= 0)
+    return "no checksum (attribute '" + std::string(checksum_attribute) + "')" +
+           with_reason(hdf5_reason());
+  Handle attr(H5Aopen(set, checksum_attribute, H5P_DEFAULT), H5Aclose);
+  std::uint32_t stored = 0;
+  if (!attr.ok() || H5Aread(attr.get(), H5T_NATIVE_UINT32, &stored) < 0)
+    return "its checksum cannot be read" + with_reason(hdf5_reason());
+  if (stored != crc)
+    return "its data do not match their checksum";
+  return "";
 }
 
 /// The archive on an open HDF5 file: groups are HDF5 groups, arrays datasets of their
@@ -149,7 +222,7 @@ public:
                  H5Dclose);
       std::string padded = text;
       padded.resize(std::max<std::size_t>(1, text.size()), '\0');
-      if (!set.ok() ||
+      if (!set.ok() || !write_checksum(set.get(), crc32_of(padded.data(), padded.size())) ||
           H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()) < 0)
         failed(n);
       return;
@@ -164,6 +237,7 @@ public:
     H5Tset_strpad(memory.get(), H5T_STR_NULLPAD);
     if (H5Dread(set.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0)
       failed(n);
+    check(set.get(), n, crc32_of(buffer.data(), buffer.size()));
     buffer.erase(buffer.find_last_not_of('\0') + 1);
     text = buffer;
   }
@@ -179,8 +253,17 @@ private:
   }
   [[noreturn]] void failed(const std::string& n) const
   {
-    throw std::runtime_error(where() + n + ": HDF5 could not " +
-                             (loading_ ? "read it" : "write it (disk full?)"));
+    const std::string reason = with_reason(hdf5_reason());
+    if (loading_) // why: a file that HDF5 cannot read is a damaged input, not a program error
+      throw InputError(where() + n + ": damaged, HDF5 cannot read it" + reason);
+    throw std::runtime_error(where() + n + ": HDF5 could not write it" + reason);
+  }
+  /// Refuses a dataset whose bytes are not those written (InputError naming it).
+  void check(hid_t set, const std::string& n, std::uint32_t crc) const
+  {
+    const std::string mismatch = checksum_mismatch(set, crc);
+    if (!mismatch.empty())
+      throw InputError(where() + n + ": damaged: " + mismatch);
   }
   Handle open(const std::string& n)
   {
@@ -208,8 +291,9 @@ private:
       Handle set(H5Dcreate2(stack_.back(), n.c_str(), file_type, space.get(), H5P_DEFAULT,
                             H5P_DEFAULT, H5P_DEFAULT),
                  H5Dclose);
-      if (!set.ok() || (!v.empty() && H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL,
-                                               H5P_DEFAULT, v.data()) < 0))
+      if (!set.ok() || !write_checksum(set.get(), crc32_of(v.data(), v.size() * sizeof(T))) ||
+          (!v.empty() &&
+           H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0))
         failed(n);
       return;
     }
@@ -227,6 +311,7 @@ private:
     v.resize(std::size_t(dims[0]));
     if (!v.empty() && H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
       failed(n);
+    check(set.get(), n, crc32_of(v.data(), v.size() * sizeof(T)));
   }
 
   bool loading_;

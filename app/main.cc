@@ -7,13 +7,16 @@
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
 #include "case_file.h"
 #include "checkpoint.h"
+#include "dem/core/output_file.h"
 #include "dem/core/progress.h"
 #include "dem/core/types.h"
 #include "dem_run.h"
 #include "elasticity_command.h"
 #include "memory_guard.h"
+#include "mpi_job.h"
 #include "output_folder.h"
 #include "provenance.h"
+#include "result_warnings.h"
 #include "verify.h"
 #include "version.h"
 #ifdef DEMBRIDGE_HAVE_FEM
@@ -30,7 +33,6 @@
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 namespace fs = std::filesystem;
@@ -43,10 +45,9 @@ void write_summary(const fs::path& dir, const nlohmann::json& j)
 {
   const fs::path tmp = dir / "summary.json.part";
   {
-    std::ofstream out(tmp);
+    dembridge::dem::OutputFile out(tmp); // failures name the file and the reason
     out << j.dump(2) << '\n';
-    if (!out)
-      throw std::runtime_error((dir / "summary.json").string() + ": cannot write");
+    out.close();
   }
   fs::rename(tmp, dir / "summary.json");
 }
@@ -98,24 +99,45 @@ dembridge::fem::DynamicsCheckpoints fem_checkpoints(const dealii::ParameterHandl
 }
 #endif
 
-int run(const std::string& case_file, const std::vector<std::string>& overrides,
-        std::string output_dir, const std::string& resume_dir)
+/// A folder option given an empty path would silently fall back to the default folder.
+void refuse_empty_paths(const CLI::App& app)
+{
+  for (const auto* command : app.get_subcommands())
+    for (const char* name : {"--output-dir", "--resume"})
+      if (const auto* option = command->get_option_no_throw(name);
+          option && option->count() > 0 && option->as<std::string>().empty())
+        throw std::runtime_error(std::string(name) + ": the path is empty (name a folder" +
+                                 (name == std::string("--output-dir")
+                                      ? ", or leave the option out for the default one)"
+                                      : ")"));
+}
+
+int run(const dembridge::app::MpiJob& job, const std::string& case_file,
+        const std::vector<std::string>& overrides, std::string output_dir,
+        const std::string& resume_dir)
 {
   const auto start = std::chrono::steady_clock::now();
   const std::string started_at = dembridge::app::utc_now();
   auto prm = dembridge::app::read_case(case_file, overrides);
+  const std::string mode = prm->get("Mode");
+  // Mode = dem on several ranks: explicit runs split the particles over the ranks (rank 0
+  // writes); what does not run there yet is refused on every rank alike (dem_run_ranks.h).
   // Paths inside the case (particle files, meshes) are relative to the case file.
   const fs::path case_dir = fs::absolute(case_file).parent_path();
+  // The folder (prepare_checkpoint's rule: --resume's, --output-dir, or output/CASE) is locked
+  // before anything looks into it: a second run into it is refused first, whatever it holds.
+  const fs::path dir = !resume_dir.empty()   ? fs::path(resume_dir)
+                       : !output_dir.empty() ? fs::path(output_dir)
+                                             : fs::path("output") / fs::path(case_file).stem();
+  dembridge::app::OutputFolder folder(dir, MPI_COMM_WORLD);
   // --resume DIR continues the run in DIR from DIR/checkpoint.h5 (checkpoint.h)
   const dembridge::app::CheckpointSettings checkpoint =
       dembridge::app::prepare_checkpoint(*prm, case_file, output_dir, resume_dir);
-  const fs::path dir(output_dir);
   // Written into a staging folder and moved in on success (output_folder.h): a failed or killed
   // run leaves the previous run's complete results, never a mix; a resumed run keeps the staged
   // files of the run it continues.
-  dembridge::app::OutputFolder folder(dir, MPI_COMM_WORLD, checkpoint.resume);
+  folder.stage(checkpoint.resume);
   nlohmann::json summary, memory_estimate;
-  const std::string mode = prm->get("Mode");
   const fs::path abs_dir = folder.staging();
   const fs::path cwd = fs::current_path();
   fs::current_path(case_dir);
@@ -128,6 +150,10 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
                                "damage zone in its particle region)");
     // before building anything: refuse a case the machine's memory cannot hold
     memory_estimate = dembridge::app::check_memory(*prm);
+    // tests: one rank fails alone while the others go on into collective calls (mpi_job.h)
+    if (const char* rank = std::getenv("DEMBRIDGE_TEST_FAIL_ON_RANK");
+        rank && std::atoi(rank) == job.rank())
+      throw std::runtime_error("DEMBRIDGE_TEST_FAIL_ON_RANK: this rank fails alone");
     if (mode == "dem")
       summary = dembridge::app::run_dem_case(*prm, abs_dir, checkpoint);
     else if (mode == "coupled")
@@ -174,26 +200,29 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     throw;
   }
   fs::current_path(cwd);
+  // a figure the run could not measure is named in "warnings", never a silent null
+  dembridge::app::flag_undefined_figures(
+      summary, dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   summary["case"] = fs::path(case_file).filename().string();
   summary["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary["memory_estimate"] = memory_estimate;
   summary["peak_memory_bytes"] = dembridge::app::peak_memory_bytes();
   summary.update(dembridge::app::provenance(*prm, started_at));
-  const bool rank0 = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  if (rank0)
-  {
-    dembridge::app::write_parameters_file(*prm, case_file, abs_dir / "parameters.prm");
-    auto files = folder.staged_files();
-    files.push_back("summary.json");
-    summary["output_files"] = files;
-    write_summary(abs_dir, summary);
-  }
+  dembridge::app::on_root_for_all(MPI_COMM_WORLD,
+                                  [&]
+                                  {
+                                    dembridge::app::write_parameters_file(
+                                        *prm, case_file, abs_dir / "parameters.prm");
+                                    auto files = folder.staged_files();
+                                    files.push_back("summary.json");
+                                    summary["output_files"] = files;
+                                    write_summary(abs_dir, summary);
+                                  });
   folder.commit();
-  if (rank0)
-    dembridge::app::finish_checkpoints(checkpoint); // the run is complete: no checkpoint left
-  if (rank0)
+  if (job.root())
   {
+    dembridge::app::finish_checkpoints(checkpoint); // the run is complete: no checkpoint left
     dembridge::app::print_figures(summary, std::cout);
     std::cout << "dembridge: wrote " << (dir / "summary.json").string() << '\n';
   }
@@ -204,9 +233,15 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
 int main(int argc, char** argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // under mpirun: rank 0 alone prints; an error ends the whole job (mpi_job.h)
+  const dembridge::app::MpiJob job(MPI_COMM_WORLD);
   dembridge::app::set_command_line(argc, argv);
   // long phases without an observer (random packing) report here (dem/core/progress.h)
-  dembridge::dem::progress_sink() = [](const std::string& line) { std::cout << line << std::endl; };
+  dembridge::dem::progress_sink() = [root = job.root()](const std::string& line)
+  {
+    if (root)
+      std::cout << line << std::endl;
+  };
   CLI::App app{"dembridge: coupled DEM-FEM for bonded-particle models"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dembridge " + dembridge::app::version() + " (git commit " +
@@ -262,33 +297,46 @@ int main(int argc, char** argv)
   {
     // --help and --version exit 0; a usage error is one line and exit code 1 like bad input
     if (e.get_exit_code() == 0)
-      return app.exit(e);
-    std::cerr << "dembridge: error: " << usage_error(app, argc, argv, e.what())
-              << " (dembridge --help lists the usage)" << std::endl;
-    return 1;
+      return job.root() ? app.exit(e) : 0;
+    return job.fail(usage_error(app, argc, argv, e.what()) + " (dembridge --help lists the usage)");
   }
   try
   {
+    refuse_empty_paths(app);
     if (*print_cmd)
     {
       dealii::ParameterHandler prm;
       dembridge::app::declare_all_parameters(prm, {"<name>"}, {"<name>"}, {"<name>"});
-      prm.print_parameters(std::cout, dealii::ParameterHandler::Text);
+      if (job.root())
+        prm.print_parameters(std::cout, dealii::ParameterHandler::Text);
       return 0;
     }
+    // Commands that run on one rank, refused on more before they read anything.
     if (*verify_cmd)
+    {
+      job.require_one_rank("verify", "the FE model is small");
       return dembridge::app::verify(verify);
+    }
     if (*elasticity_cmd)
+    {
+      job.require_one_rank("elasticity", "the static solver is serial");
       return dembridge::app::run_elasticity(elasticity);
+    }
 #ifdef DEMBRIDGE_HAVE_COUPLING
     if (*compare_cmd)
+    {
+      job.require_one_rank("compare", "it starts the runs itself");
       return dembridge::app::run_compare(compare);
+    }
 #endif
-    return run(case_file, overrides, output_dir, resume_dir);
+    return run(job, case_file, overrides, output_dir, resume_dir);
   }
   catch (const std::exception& e)
   {
-    std::cerr << "dembridge: error: " << dembridge::app::one_line(e.what()) << std::endl;
-    return 1;
+    return job.fail(dembridge::app::one_line(e.what()));
+  }
+  catch (...)
+  {
+    return job.fail("unknown error");
   }
 }

@@ -61,6 +61,8 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
     for (std::size_t j = 0; j < n; ++j)
       id[j] = std::int64_t(j);
     file.point_data("id", id);
+    if (!p.grain.empty()) // the microstructure's grain of each particle
+      file.point_data("grain_id", scalars(p.grain));
     // Particle stress tensors (thesis eq. 62), Pa, tension positive; row-major 3 x 3.
     const dem::ParticleStresses stress = dem::particle_stresses(p, b);
     std::vector<double> sigma(9 * n);
@@ -116,6 +118,15 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
     file.cell_data("shear_stress", shear_stress);
     file.cell_data("damage", damage);
     file.cell_data("id", id);
+    if (!b.bond_class.empty()) // the class that chose each bond's constants (bond_class.h)
+    {
+      std::vector<std::uint8_t> bond_class(nb);
+      for (std::size_t k = 0; k < nb; ++k)
+        bond_class[k] = std::uint8_t(b.bond_class[k]);
+      file.cell_data("class", bond_class);
+      file.field_strings("class_names", std::vector<std::string>(dem::bond_class_names.begin(),
+                                                                 dem::bond_class_names.end()));
+    }
     std::vector<std::int64_t> particle_id(n);
     for (std::size_t j = 0; j < n; ++j)
       particle_id[j] = std::int64_t(j);

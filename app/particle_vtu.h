@@ -3,12 +3,15 @@
 // cell data, field data):
 //  - particles_NNNNNN.vtu: one vertex cell per particle; point data radius, displacement,
 //    velocity, angular_velocity, force, moment (vectors), stress (3 x 3 tensor, thesis eq. 62,
-//    Pa), group_mask (UInt32: bit g for group g of group_names), coordination (Int32), id (Int64);
+//    Pa), group_mask (UInt32: bit g for group g of group_names), coordination (Int32), id (Int64),
+//    with a microstructure grain_id (Int32, dem/microstructure/columnar_grains.h);
 //  - bonds_NNNNNN.vtu: the particle centres as points (point data particle_id) and one line cell
 //    per bond with cell data normal_force (tension positive), shear_force, twisting_moment,
 //    bending_moment, force (vector on particle b), state (UInt8: 0 intact, 1 softening,
 //    2 broken), tensile_stress and shear_stress (beam theory on the bond section,
-//    dem/bonds/bond_stress.h, Pa), damage D and id (Int64, the bond index);
+//    dem/bonds/bond_stress.h, Pa), damage D and id (Int64, the bond index), with a
+//    microstructure class (UInt8: 0 intra_grain, 1 grain_boundary, 2 weak_plane, named in the
+//    field data class_names);
 //  - both: field data TIME, CYCLE (the step) and group_names (string array).
 // The .pvd time series are written by finish() (particle_vtu_file.h: write_pvd, no date).
 #include "dem/bonds/bond_store.h"

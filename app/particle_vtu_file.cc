@@ -1,8 +1,8 @@
 #include "particle_vtu_file.h"
+#include "dem/core/output_file.h"
 #include <bit>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 namespace dembridge::app
@@ -165,9 +165,7 @@ void VtuFile::field_strings(const std::string& name, const std::vector<std::stri
 void write_pvd(const std::filesystem::path& file,
                const std::vector<std::pair<double, std::string>>& entries)
 {
-  std::ofstream out(file);
-  if (!out)
-    throw std::runtime_error(file.string() + ": cannot write");
+  dem::OutputFile out(file); // failures name the file and the reason
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
          "byte_order=\"LittleEndian\">\n<Collection>\n";
   for (const auto& [time, name] : entries)
@@ -177,15 +175,12 @@ void write_pvd(const std::filesystem::path& file,
     out << "  <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << name << "\"/>\n";
   }
   out << "</Collection>\n</VTKFile>\n";
-  if (!out)
-    throw std::runtime_error(file.string() + ": write failed");
+  out.close();
 }
 
 void VtuFile::write(const std::filesystem::path& file, double time, long step) const
 {
-  std::ofstream out(file, std::ios::binary);
-  if (!out)
-    throw std::runtime_error(file.string() + ": cannot write");
+  dem::OutputFile out(file, std::ios::binary | std::ios::trunc);
   char t[64];
   std::snprintf(t, sizeof t, "%.17g", time);
   out << "<?xml version=\"1.0\"?>\n"
@@ -202,7 +197,6 @@ void VtuFile::write(const std::filesystem::path& file, double time, long step) c
       << cells_ << "</Cells>\n<PointData>\n"
       << point_data_ << "</PointData>\n<CellData>\n"
       << cell_data_ << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  if (!out)
-    throw std::runtime_error(file.string() + ": write failed");
+  out.close();
 }
 } // namespace dembridge::app

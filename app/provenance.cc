@@ -1,10 +1,11 @@
 #include "provenance.h"
+#include "dem/core/output_file.h"
 #include "version.h"
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <deal.II/base/multithread_info.h>
-#include <fstream>
 #include <sstream>
 #include <unistd.h>
 
@@ -123,10 +124,9 @@ void write_parameters_file(const dealii::ParameterHandler& prm, const fs::path& 
       "\n"
       "# Rerun: dembridge run " +
       file.filename().string() + "\n";
-  std::ofstream out(file);
+  dem::OutputFile out(file); // failures name the file and the reason
   out << parameters_file_text(prm, fs::absolute(case_file).parent_path(), header);
-  if (!out)
-    throw std::runtime_error(file.string() + ": cannot write");
+  out.close();
 }
 
 std::string utc_now()
@@ -164,7 +164,7 @@ void print_figures(const nlohmann::json& summary, std::ostream& out)
 {
   struct Figure
   {
-    const char* key;
+    const char* key; ///< a path: "first_crack.position" is summary["first_crack"]["position"]
     const char* unit;
   };
   static const Figure figures[] = {
@@ -181,44 +181,78 @@ void print_figures(const nlohmann::json& summary, std::ostream& out)
       {"poisson_ratio_zx", ""},
       {"poisson_ratio_zy", ""},
       {"flexural_modulus", "Pa"},
+      {"final_secant_modulus", "Pa"},
       {"boundary_stress", "Pa"},
       {"reaction_force", "N"},
+      // failure: the peak, where it came, how far past it the run went, what broke and where
+      {"peak_stress", "Pa"},
+      {"strain_at_peak", ""},
+      {"peak_load", "N"},
+      {"deflection_at_peak", "m"},
+      {"final_to_peak_load", ""},
+      {"n_broken_bonds", ""},
+      {"broken_bonds_tension", ""},
+      {"broken_bonds_shear", ""},
+      {"first_crack.position", "m"},
+      {"damage_layers.localisation", ""},
       {"strain_energy", "J"},
       {"energy_balance_error", ""},
       {"kinetic_energy_share_max", ""},
       {"shadow_energy_relative_drift", ""},
+      {"geometry", ""},
+      {"max_rotation", "rad"},
       {"porosity", ""},
       {"mean_coordination", ""},
       {"n_particles", ""},
       {"n_bonds", ""},
+      {"n_unbonded_particles", ""},
       {"n_dofs", ""},
       {"steps", ""},
       {"simulated_time", "s"},
       {"stop_reason", ""},
   };
+  auto number = [](const nlohmann::json& v)
+  {
+    if (v.is_number_integer() || v.is_number_unsigned())
+      return std::to_string(v.get<long long>());
+    char text[32];
+    std::snprintf(text, sizeof text, "%.8g", v.get<double>());
+    return std::string(text);
+  };
   out << "\nfigures of this run (summary.json):\n";
-  char line[160];
+  char line[400];
   for (const auto& f : figures)
   {
-    if (!summary.contains(f.key))
+    const nlohmann::json* v = &summary;
+    std::istringstream path(f.key);
+    for (std::string part; v && std::getline(path, part, '.');)
+      v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+    if (!v)
       continue;
-    const auto& v = summary[f.key];
     std::string value;
-    if (v.is_number_integer() || v.is_number_unsigned())
-      value = std::to_string(v.get<long long>());
-    else if (v.is_number())
-    {
-      char number[32];
-      std::snprintf(number, sizeof number, "%.8g", v.get<double>());
-      value = number;
-    }
-    else if (v.is_string())
-      value = v.get<std::string>();
+    if (v->is_number())
+      value = number(*v);
+    else if (v->is_string())
+      value = v->get<std::string>();
+    else if (v->is_null()) // an undefined figure: its warning says why
+      value = "undefined";
+    else if (v->is_array() && !v->empty() &&
+             std::all_of(v->begin(), v->end(), [](const auto& x) { return x.is_number(); }))
+      for (const auto& x : *v)
+        value += (value.empty() ? "" : ", ") + number(x);
     else
       continue;
-    std::snprintf(line, sizeof line, "  %-28s %16s%s%s\n", f.key, value.c_str(), *f.unit ? " " : "",
-                  f.unit);
+    std::snprintf(line, sizeof line, "  %-28s %16s%s%s\n", f.key, value.c_str(),
+                  *f.unit && !v->is_null() ? " " : "", v->is_null() ? "" : f.unit);
     out << line;
+  }
+  if (summary.contains("warnings") && summary["warnings"].is_array() &&
+      !summary["warnings"].empty())
+  {
+    out << "warnings (summary.json):\n";
+    for (const auto& w : summary["warnings"])
+      if (w.is_string())
+        out << "  " << w.get<std::string>() << '\n';
   }
 }
 } // namespace dembridge::app

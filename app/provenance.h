@@ -41,7 +41,8 @@ nlohmann::json provenance(const dealii::ParameterHandler& prm, const std::string
 /// Current UTC time as ISO 8601 (2026-12-01T10:24:04Z).
 std::string utc_now();
 
-/// Prints the figures the case measured (deflections, E, nu, frequency, energy balance error,
-/// ...) that @p summary holds, one per line: name, value, unit.
+/// Prints the figures the case measured (deflections, E, nu, frequency, a failure run's peak and
+/// broken bonds, energy balance error, ...) that @p summary holds, one per line: name, value,
+/// unit ("undefined" for a null figure), then the summary's warnings.
 void print_figures(const nlohmann::json& summary, std::ostream& out);
 } // namespace dembridge::app

@@ -67,6 +67,9 @@ std::vector<dem::LoadConfig> loads_on(const dem::CaseConfig& c, const std::strin
     if (l.load.kind == dem::LoadKind::moment || l.load.kind == dem::LoadKind::angular_velocity)
       throw std::runtime_error("Load " + l.load.name +
                                "/type: moments and rotations have no FE counterpart");
+    if (l.load.kind == dem::LoadKind::pressure)
+      throw std::runtime_error("Load " + l.load.name +
+                               "/type: verify maps no pressure to the FE model");
     out.push_back(l);
   }
   return out;

@@ -1,5 +1,6 @@
 // dembridge verify: comparison.csv and comparison.png (see verify_report.h).
 #include "verify_report.h"
+#include "dem/core/output_file.h"
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -129,10 +130,9 @@ void write_json_atomically(const fs::path& dir, const std::string& name, const j
 {
   const fs::path tmp = dir / (name + ".part");
   {
-    std::ofstream out(tmp);
+    dem::OutputFile out(tmp); // failures name the file and the reason
     out << j.dump(2) << '\n';
-    if (!out)
-      throw std::runtime_error((dir / name).string() + ": cannot write");
+    out.close();
   }
   fs::rename(tmp, dir / name);
 }
@@ -142,7 +142,7 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
 {
   const fs::path csv = dir / "comparison.csv", csv_tmp = dir / "comparison.csv.part";
   {
-    std::ofstream out(csv_tmp);
+    dem::OutputFile out(csv_tmp); // failures name the file and the reason
     out << "kind,quantity,unit,axis,position,dem,fem,difference,relative_difference\n";
     auto cell = [](const json& v) { return v.is_number() ? num(v.get<double>()) : std::string(); };
     for (const auto* rows : {&report.scalars, &report.layers})
@@ -155,8 +155,7 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
             << cell(j["dem"]) << ',' << cell(j["fem"]) << ',' << cell(j["difference"]) << ','
             << cell(j["relative_difference"]) << '\n';
       }
-    if (!out)
-      throw std::runtime_error(csv.string() + ": cannot write");
+    out.close();
   }
   fs::rename(csv_tmp, csv);
 

@@ -11,7 +11,9 @@
 // "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
 #include "coupling/handshake.h"
 #include "fem/mesh.h"
+#include <array>
 #include <deal.II/distributed/tria.h>
+#include <vector>
 
 namespace dembridge::coupling
 {

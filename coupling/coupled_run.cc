@@ -1,4 +1,5 @@
 #include "coupling/coupled_run.h"
+#include "dem/core/progress.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +37,7 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   const long first = problem.steps();
   if (problem.growth_checks().planned_steps > 0) // a resumed run whose region grew
     planned = problem.growth_checks().planned_steps;
+  const dem::StepRate step_rate(first, start); // a resumed run's own steps, from its start
 
   CoupledRunResult r;
   r.stop_reason = planned == s.max_steps ? "max steps" : "end time";
@@ -102,10 +104,9 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
       if (std::chrono::duration<double>(now - last_progress).count() >= s.progress_seconds)
       {
         last_progress = now;
-        const double elapsed = std::chrono::duration<double>(now - start).count();
-        const double rate = double(n + 1 - first) / elapsed;
-        observer.on_progress(problem, double(n + 1) / double(planned), rate,
-                             double(planned - n - 1) / rate);
+        observer.on_progress(problem, double(n + 1) / double(planned),
+                             step_rate.per_second(n + 1, now),
+                             step_rate.seconds_left(n + 1, planned, now));
       }
     }
     if (last)

@@ -241,7 +241,7 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
   }
   // history.csv: the header (a resumed run's file cut back to its checkpoint), then one row a step
   dem::HistoryFile history_file;
-  std::ofstream& history = history_file.stream();
+  std::ostream& history = history_file.stream();
   if (root)
   {
     const bool resumed = checkpoints && checkpoints->resume;
@@ -322,6 +322,7 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     if (checkpoints && checkpoints->after_step)
       checkpoints->after_step(loop.steps);
   }
+  history_file.close(); // its last rows are written: a failure names the file and the reason
   if (p.write_vtu && (p.output_every == 0 || p.n_steps % p.output_every != 0))
     problem.output_results(output_dir, p.output_every == 0 ? 1 : p.n_steps / p.output_every + 1,
                            problem.time());

@@ -2,6 +2,7 @@
 #include "mesh.h"
 
 #include "dem/core/available_memory.h"
+#include "mesh_estimate.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -61,6 +62,10 @@ std::string resolve_mesh_file(const std::string& file)
   namespace fs = std::filesystem;
   if (fs::is_regular_file(file))
     return file;
+  std::error_code ec;
+  if (fs::is_directory(file, ec))
+    throw std::runtime_error("FEM/Mesh/file: '" + file +
+                             "' is a directory, not a mesh file (give the .msh file)");
   // the paths tried, absolute: a relative path is resolved against the working directory,
   // which `dembridge run` sets to the case file's folder
   std::string tried = fs::absolute(file).lexically_normal().string();
@@ -77,26 +82,11 @@ std::string resolve_mesh_file(const std::string& file)
 
 namespace
 {
-/// Refuses refinements whose mesh the machine cannot hold, before refining: each global
-/// refinement multiplies the cells by 8; a Q_p mesh of C cells has about (p C^(1/3) + 1)^3
-/// nodes, 3 DoFs each; a static solve takes about 6 kB per DoF for Q1 and 11 kB for Q2 (the
-/// cautious end of bench/RESULTS_FEM.md: matrix, AMG hierarchy, vectors).
+/// Refuses refinements whose mesh the machine cannot hold, before refining (mesh_estimate.h;
+/// the memory guard checks the estimate before the coarse mesh is read, this the mesh read).
 void check_refined_mesh_fits(const Parameters& p, double coarse_cells)
 {
-  const double cells = coarse_cells * std::pow(8.0, p.refinements);
-  const double nodes = std::pow(p.degree * std::cbrt(cells) + 1, 3);
-  const double dofs = 3 * nodes;
-  const double bytes_per_dof = p.degree == 1 ? 6e3 : 11e3;
-  const double available = available_memory_bytes();
-  if (!(available > 0) || dofs * bytes_per_dof <= available)
-    return;
-  std::ostringstream text;
-  text.precision(3);
-  text << "FEM/Mesh/refinements: " << p.refinements << " refinements of the " << coarse_cells
-       << " coarse cells make " << cells << " cells and about " << dofs << " DoFs (Q" << p.degree
-       << "), needing about " << human_bytes(dofs * bytes_per_dof)
-       << " of memory; this machine has " << human_bytes(available) << " available";
-  throw std::runtime_error(text.str());
+  check_mesh_fits(p, estimate_refined_mesh(p, coarse_cells), available_memory_bytes());
 }
 
 constexpr dealii::types::boundary_id removed_boundary_id = 6;

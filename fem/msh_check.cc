@@ -12,8 +12,12 @@
 //         them); $Elements: blocks "dim tag type count", each element its tag and the nodes of
 //         its type, every node defined, counts summing to the declared total (token by token,
 //         as gmsh's format is whitespace-separated: MSH file format 4.1, gmsh manual 10.1).
+// A .geo script, an empty file, a file that does not begin with $MeshFormat and binary data are
+// refused first (deal.II says only that "the string <//> is not recognized"); text quoted from
+// the file is cut to 40 printable characters, never a binary file's bytes.
 #include "mesh.h"
 
+#include <filesystem>
 #include <iterator>
 #include <optional>
 #include <set>
@@ -25,6 +29,24 @@ namespace dembridge::fem
 {
 namespace
 {
+/// File text fit for a one-line message: bytes outside printable ASCII as '?', at most 40.
+std::string shown(const std::string& text)
+{
+  std::string out;
+  for (unsigned char c : text.substr(0, 40))
+    out += c >= 0x20 && c < 0x7f ? char(c) : '?';
+  return text.size() > 40 ? out + "..." : out;
+}
+
+/// A control byte other than blanks: the file is not text (no ASCII .msh holds one).
+bool holds_binary(const std::string& line)
+{
+  for (unsigned char c : line)
+    if ((c < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || c == 0x7f)
+      return true;
+  return false;
+}
+
 /// Nodes of a gmsh element type (gmsh manual, "MSH file format"; the same numbers in 2.2 and
 /// 4.1); 0: a type this check does not know.
 int msh_nodes_of_type(long type)
@@ -59,7 +81,8 @@ public:
       used = 0;
     }
     if (used != text.size() || v < least)
-      fail(n, what + " '" + text + "' is not an integer of at least " + std::to_string(least));
+      fail(n,
+           what + " '" + shown(text) + "' is not an integer of at least " + std::to_string(least));
     return v;
   }
   void real(const std::string& what)
@@ -75,7 +98,7 @@ public:
       used = 0;
     }
     if (used != text.size())
-      fail(n, what + " '" + text + "' is not a number");
+      fail(n, what + " '" + shown(text) + "' is not a number");
   }
   /// Skips @p count tokens (checked to exist, so a huge count fails at once).
   void skip(long count, const std::string& what)
@@ -90,7 +113,7 @@ public:
   {
     if (at_ != tokens_.size())
       fail(tokens_[at_].second,
-           "'" + tokens_[at_].first + "' after the last entry the counts declare");
+           "'" + shown(tokens_[at_].first) + "' after the last entry the counts declare");
   }
   long last_line() const
   {
@@ -236,8 +259,31 @@ void check_msh_sections(std::istream& in, const std::string& file)
   };
   const auto checked41 = [&](const std::string& s)
   { return version == "4.1" && (s == "$Entities" || s == "$Nodes" || s == "$Elements"); };
+  // why: deal.II says only that "the string <//> is not recognized" for these
+  const std::filesystem::path path(file);
+  if (path.extension() == ".geo")
+    throw std::runtime_error(
+        "FEM/Mesh/file: " + file + ": a gmsh geometry script, not a mesh; mesh it first (gmsh -3 " +
+        file + " writes " + std::filesystem::path(path).replace_extension(".msh").string() +
+        ") and give the .msh file");
+  bool begun = false; // a line other than blanks read
   for (long n = 1; std::getline(in, line); ++n)
   {
+    if (!begun && line.find_first_not_of(" \t\r\v\f") == std::string::npos)
+      continue;
+    if (!begun)
+    {
+      begun = true;
+      const auto b = line.find_first_not_of(" \t\r\v\f");
+      const std::string first_word = line.substr(b, line.find_first_of(" \t\r\v\f", b) - b);
+      // gmsh writes $MeshFormat first (deal.II also reads gmsh 1's $NOD files)
+      if (first_word != "$MeshFormat" && first_word != "$NOD")
+        fail(n, holds_binary(line)
+                    ? "not a gmsh .msh file (binary data where $MeshFormat should begin it)"
+                    : "not a gmsh .msh file: it begins with '" + shown(line.substr(b)) +
+                          "', not $MeshFormat (a gmsh geometry script is meshed first: gmsh -3 "
+                          "FILE.geo writes FILE.msh)");
+    }
     // why: deal.II reads the file token by token, so an indented "\t$PhysicalNames" opens a
     // section for it too (and it then looked for the end marker forever: a fuzz_mesh finding)
     const auto first = line.find_first_not_of(" \t\r\v\f");
@@ -250,11 +296,15 @@ void check_msh_sections(std::istream& in, const std::string& file)
       // bounds on some (fuzz/findings/mesh_deal_ii_*.msh)
       version = line.substr(0, line.find(' '));
       if (version != "2.2" && version != "4.1")
-        fail(n, "gmsh format version '" + version +
+        fail(n, "gmsh format version '" + shown(version) +
                     "' is not read (2.2 or 4.1: gmsh -format msh22 or msh41)");
       if (line.find(" 0 ") == std::string::npos)
-        fail(n, "binary .msh files are not read (save as ASCII: gmsh -format msh22 or msh41)");
+        fail(n, "a binary .msh file; only ASCII ones are read (convert it: gmsh " + file +
+                    " -save -format msh41 -o ASCII.msh)");
     }
+    if (holds_binary(line))
+      fail(n, "binary data in a .msh file read as ASCII (a damaged file, or a binary mesh "
+              "with an ASCII header: gmsh FILE -save -format msh41 -o ASCII.msh writes ASCII)");
     if (tokens41 && (line.empty() || line[0] != '$'))
       tokens41->add_line(line, n);
     // Version 2.2 nodes and elements: counts, fields and node numbers checked, since deal.II
@@ -301,7 +351,7 @@ void check_msh_sections(std::istream& in, const std::string& file)
     {
       if (open.empty() || line != "$End" + open.substr(1))
         throw std::runtime_error("FEM/Mesh/file: " + file + ": line " + std::to_string(n) + ": '" +
-                                 line + "' closes no open section" +
+                                 shown(line) + "' closes no open section" +
                                  (open.empty() ? "" : " (" + open + " is open)"));
       if (tokens41)
       {
@@ -318,8 +368,8 @@ void check_msh_sections(std::istream& in, const std::string& file)
     else if (!open.empty())
       throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
                                std::to_string(open_line) + ") is not closed by $End" +
-                               open.substr(1) + " before " + line + " (line " + std::to_string(n) +
-                               ")");
+                               open.substr(1) + " before " + shown(line) + " (line " +
+                               std::to_string(n) + ")");
     else
     {
       open = line, open_line = n;
@@ -327,6 +377,9 @@ void check_msh_sections(std::istream& in, const std::string& file)
         tokens41.emplace(file, open);
     }
   }
+  if (!begun)
+    throw std::runtime_error("FEM/Mesh/file: " + file +
+                             ": the file is empty (a gmsh .msh file begins with $MeshFormat)");
   if (!open.empty())
     throw std::runtime_error("FEM/Mesh/file: " + file + ": " + open + " (line " +
                              std::to_string(open_line) + ") is not closed by $End" +

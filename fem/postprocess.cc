@@ -1,5 +1,6 @@
 // dembridge::fem — what is measured on a solution: point values, reactions, boundary means,
 // strain energy, and the ParaView fields (displacement, strain, stress, von Mises stress).
+#include "dem/core/output_file.h"
 #include "elastic_problem.h"
 
 #include <deal.II/base/quadrature_lib.h>
@@ -9,7 +10,6 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <algorithm>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -309,8 +309,9 @@ void ElasticProblem::output_results(const std::filesystem::path& output_dir,
   pvtu_records.emplace_back(time, pvtu);
   if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
   {
-    std::ofstream pvd(output_dir / (prm.base_name + ".pvd"));
+    dem::OutputFile pvd(output_dir / (prm.base_name + ".pvd")); // failures name file, reason
     DataOutBase::write_pvd_record(pvd, pvtu_records);
+    pvd.close();
   }
 }
 

@@ -39,7 +39,8 @@ seed() { # seed TARGET FILES...
   mkdir -p "$dir"
   for f in "$@"; do [ -f "$f" ] && cp -n "$f" "$dir/" 2>/dev/null; done
 }
-seed fuzz_case_file "$here"/examples/*.prm "$here"/tests/app/bad/*.prm "$here"/tests/specimens/bad/*.prm
+seed fuzz_case_file "$here"/examples/*.prm "$here"/tests/app/bad/*.prm "$here"/tests/specimens/bad/*.prm \
+  "$here"/tests/app/bad/*.json "$here"/tests/app/data/*.json
 seed fuzz_particle_csv "$here"/tests/app/bad/*.csv "$here"/tests/specimens/bad/*.csv "$here"/tests/app/data/*.csv
 seed fuzz_mesh "$build"/meshes/*.msh "$here"/tests/app/bad/*.msh "$here"/fuzz/findings/*.msh
 # the same meshes in gmsh's format 4.1 (the build writes 2.2), so both readers are fuzzed

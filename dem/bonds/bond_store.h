@@ -4,6 +4,7 @@
 // trial forces) to broken, never back (bonds are never erased inside the force loop, so indices
 // stay valid for output and the crack log). Strengths and damage (bond_damage.h) are per bond;
 // their arrays are empty when the failure law is `none`.
+#include "dem/bonds/bond_class.h"
 #include "dem/bonds/bond_damage.h"
 #include "dem/bonds/bond_model.h"
 #include <vector>
@@ -34,6 +35,9 @@ struct BondStore
   std::vector<double> damping_moment; ///< c_r, N·m·s/rad (paper eq. 10, same scaling)
   std::vector<BondModel> model;
   std::vector<BondState> state;
+  /// The class that chose each bond's constants (bond_class.h); empty without a microstructure
+  /// (every bond intra-grain).
+  std::vector<BondClass> bond_class;
   // Last recorded contact-point force and couple acting on particle b (global frame); filled
   // on recording steps only (the static run's figures, a coupled run's band check, the tests
   // of the force loop), not on every step. 48 of the 154 bytes of a bond: explicit full-DEM

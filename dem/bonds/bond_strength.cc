@@ -129,7 +129,8 @@ void DamageConfig::validate() const
   }
 }
 
-void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vector<Vec3>* positions)
+void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vector<Vec3>* positions,
+                           std::span<const StrengthMeans> class_means)
 {
   c.validate();
   const std::size_t n = b.size();
@@ -147,6 +148,14 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
   if (!on)
     return;
   const double shear_mean = c.law.shear == ShearCriterion::constant ? c.shear_strength : c.cohesion;
+  const bool by_class = !class_means.empty() && b.bond_class.size() == n;
+  if (by_class && class_means.size() < bond_class_count)
+    throw std::logic_error("assign_bond_strengths: a mean per bond class needed");
+  auto means = [&](std::size_t k)
+  {
+    return by_class ? class_means[std::size_t(b.bond_class[k])]
+                    : StrengthMeans{c.tensile_strength, shear_mean};
+  };
   if (c.scatter_by_position && c.scatter != StrengthScatter::none)
   {
     if (!positions)
@@ -155,8 +164,9 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
     {
       const Vec3 mid = 0.5 * ((*positions)[b.a[k]] + (*positions)[b.b[k]]);
       StrengthSampler sample(c, position_seed(c.seed, mid));
-      b.tensile_strength[k] = sample.draw(c.tensile_strength);
-      b.shear_strength[k] = sample.draw(shear_mean);
+      const StrengthMeans mean = means(k);
+      b.tensile_strength[k] = sample.draw(mean.tensile);
+      b.shear_strength[k] = sample.draw(mean.shear);
     }
   }
   else
@@ -164,28 +174,38 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
     StrengthSampler sample(c);
     for (std::size_t k = 0; k < n; ++k)
     {
-      b.tensile_strength[k] = sample.draw(c.tensile_strength);
-      b.shear_strength[k] = sample.draw(shear_mean);
+      const StrengthMeans mean = means(k);
+      b.tensile_strength[k] = sample.draw(mean.tensile);
+      b.shear_strength[k] = sample.draw(mean.shear);
     }
   }
   if (c.law.mode != FailureMode::softening)
     return;
   // Snap-back (bond_damage.h eq. 4): G_f A >= U_peak of pure tension and of pure shear.
-  double need_I = 0, need_II = 0; // largest U_peak / A over the bonds, J/m^2
+  double need_I = 0, need_II = 0;        // largest U_peak / A over the bonds, J/m^2
+  std::size_t needy_I = 0, needy_II = 0; // the bonds that need them
   for (std::size_t k = 0; k < n; ++k)
   {
     const double area = std::numbers::pi * b.radius[k] * b.radius[k];
-    need_I = std::max(need_I, b.tensile_strength[k] * b.tensile_strength[k] * area / (2 * b.kn[k]));
-    need_II = std::max(need_II, b.shear_strength[k] * b.shear_strength[k] * area / (2 * b.ks[k]));
+    const double u_I = b.tensile_strength[k] * b.tensile_strength[k] * area / (2 * b.kn[k]);
+    const double u_II = b.shear_strength[k] * b.shear_strength[k] * area / (2 * b.ks[k]);
+    if (u_I > need_I)
+      need_I = u_I, needy_I = k;
+    if (u_II > need_II)
+      need_II = u_II, needy_II = k;
   }
-  for (auto [g, need, key, what] : {std::tuple{c.law.fracture_energy_I, need_I,
-                                               "fracture energy mode I", "sigma_t^2 A / (2 k_n)"},
-                                    std::tuple{c.law.fracture_energy_II, need_II,
-                                               "fracture energy mode II", "tau^2 A / (2 k_s)"}})
+  for (auto [g, need, needy, key, what] :
+       {std::tuple{c.law.fracture_energy_I, need_I, needy_I, "fracture energy mode I",
+                   "sigma_t^2 A / (2 k_n)"},
+        std::tuple{c.law.fracture_energy_II, need_II, needy_II, "fracture energy mode II",
+                   "tau^2 A / (2 k_s)"}})
     if (g < need)
       throw InputError(std::string("Damage/") + key + ": " + number(g) +
                        " J/m^2 is below the elastic energy per bond area at the peak, " + what +
-                       " = " + number(need) +
-                       " J/m^2 for the strongest bond (snap-back); use at least that");
+                       " = " + number(need) + " J/m^2 for the strongest bond" +
+                       (by_class
+                            ? " (a " + std::string(bond_class_name(b.bond_class[needy])) + " bond)"
+                            : std::string()) +
+                       " (snap-back); use at least that");
 }
 } // namespace dembridge::dem

@@ -22,6 +22,7 @@
 // tau_c^2 A^2 / (2 k_s) (mode II; Mohr-Coulomb: c, the strength without compression). Setup
 // refuses anything less (snap-back), naming the largest energy a bond needs.
 #include "dem/bonds/bond_store.h"
+#include <span>
 #include <string>
 
 namespace dembridge::dem
@@ -51,9 +52,20 @@ struct DamageConfig
   void validate() const;
 };
 
+/// Mean strengths of a bond class (bond_class.h), Pa: sigma_t, and tau_c or c as the shear
+/// criterion has it.
+struct StrengthMeans
+{
+  double tensile = 0, shear = 0;
+};
+
 /// Sets the store's failure law and every bond's strengths (and resets its damage); checks the
 /// softening fracture energies against snap-back. Throws InputError naming Damage/key.
 /// @p positions: the particles' reference positions, needed by scatter_by_position.
+/// @p class_means: per bond class, the means a bond of that class draws around (the scatter
+/// is relative, so a bond's draw is its class mean times the draw of the config's own); empty
+/// or a store without classes: the config's means for every bond.
 void assign_bond_strengths(BondStore& bonds, const DamageConfig& config,
-                           const std::vector<Vec3>* positions = nullptr);
+                           const std::vector<Vec3>* positions = nullptr,
+                           std::span<const StrengthMeans> class_means = {});
 } // namespace dembridge::dem

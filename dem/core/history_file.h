@@ -5,10 +5,10 @@
 // I/O, grow without bound). A resumed run cuts the file back to the checkpoint's length and
 // appends: it then ends with the uninterrupted run's file, byte for byte.
 #include "dem/core/fsync_path.h"
+#include "dem/core/output_file.h"
 #include "dem/core/types.h"
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 namespace dembridge::dem
@@ -17,26 +17,23 @@ class HistoryFile
 {
 public:
   HistoryFile() = default;
-  /// Opens @p path: emptied for a fresh run; kept as it is for a resume (resume_at cuts it).
-  /// @p shown is the name error messages give (the file the user knows, e.g. history.csv for
-  /// history.csv.part).
-  void open(const std::filesystem::path& path, bool resume, const std::string& shown = "")
+  /// Opens @p path: emptied for a fresh run; kept as it is for a resume (resume_at cuts it),
+  /// which needs the interrupted run's file (InputError naming it when it is missing). Errors
+  /// name the file and the system's reason (output_file.h).
+  void open(const std::filesystem::path& path, bool resume)
   {
     path_ = path;
-    shown_ = shown.empty() ? path.string() : shown;
+    if (resume && !std::filesystem::exists(path_))
+      missing(-1);
     out_.open(path_, std::ios::binary | (resume ? std::ios::app : std::ios::trunc));
-    if (!out_)
-      throw std::runtime_error(shown_ + ": cannot write");
   }
 
-  std::ofstream& stream() { return out_; }
+  std::ostream& stream() { return out_; }
 
   /// The bytes written so far, on the disk (for a checkpoint).
   std::int64_t durable_size()
   {
     out_.flush();
-    if (!out_)
-      throw std::runtime_error(shown_ + ": write failed");
     fsync_path(path_);
     return std::int64_t(std::filesystem::file_size(path_));
   }
@@ -49,21 +46,30 @@ public:
     std::error_code ec;
     const auto size = std::filesystem::file_size(path_, ec);
     if (ec || bytes < 0 || std::int64_t(size) < bytes)
-      throw InputError(shown_ + ": " +
-                       (ec ? std::string("missing") : std::to_string(size) + " bytes") +
-                       ", but the checkpoint was written after " + std::to_string(bytes) +
-                       " bytes of it: cannot resume without the run's own file");
+      missing(ec ? -1 : std::int64_t(size), bytes);
     std::filesystem::resize_file(path_, std::uintmax_t(bytes));
     out_.open(path_, std::ios::binary | std::ios::app);
-    if (!out_)
-      throw std::runtime_error(shown_ + ": cannot write");
   }
 
+  /// Writes what is buffered and closes; throws naming the file if any write failed.
   void close() { out_.close(); }
 
 private:
+  /// Refuses a resume whose file is missing (@p size < 0) or shorter than the checkpoint's
+  /// @p bytes, naming the file by its full path.
+  [[noreturn]] void missing(std::int64_t size, std::int64_t bytes = -1) const
+  {
+    const std::string file = std::filesystem::absolute(path_).lexically_normal().string();
+    if (bytes < 0)
+      throw InputError(file + ": missing: the checkpoint continues this file of the interrupted "
+                              "run; cannot resume without it");
+    throw InputError(file + ": " +
+                     (size < 0 ? std::string("missing") : std::to_string(size) + " bytes") +
+                     ", but the checkpoint was written after " + std::to_string(bytes) +
+                     " bytes of it: cannot resume without the run's own file");
+  }
+
   std::filesystem::path path_;
-  std::string shown_;
-  std::ofstream out_;
+  OutputFile out_;
 };
 } // namespace dembridge::dem

@@ -33,6 +33,7 @@ std::size_t ParticleStore::memory_bytes() const
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return bytes(position) + bytes(reference_position) + bytes(velocity) + bytes(angular_velocity) +
          bytes(orientation) + bytes(force) + bytes(torque) + bytes(radius) + bytes(mass) +
-         bytes(inertia) + bytes(dof_mask) + bytes(group_mask) + bytes(coordination) + bytes(id);
+         bytes(inertia) + bytes(dof_mask) + bytes(group_mask) + bytes(coordination) + bytes(id) +
+         bytes(grain);
 }
 } // namespace dembridge::dem

@@ -26,6 +26,9 @@ struct ParticleStore
   /// The particle's id as the user numbers it (its index as generated or read): the stores are
   /// renumbered into spatial order at setup (dem/model/renumbering.h); outputs show this id.
   std::vector<std::int32_t> id;
+  /// The grain each particle belongs to (dem/microstructure/columnar_grains.h); empty without
+  /// grains.
+  std::vector<std::int32_t> grain;
 
   std::size_t size() const { return position.size(); }
 

@@ -1,6 +1,7 @@
 #include "dem/measurements/measurements.h"
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
 namespace dembridge::dem
 {
@@ -146,15 +147,49 @@ FlexuralResponse flexural_response(const ParticleStore& p, const Group& pin, con
   const double top = std::abs(mean_displacement(p, loaded)[load_axis]);
   r.bottom_deflection = std::abs(mean_displacement(p, bottom)[load_axis]);
   r.deflection = 0.5 * (top + r.bottom_deflection);
-  if (!(r.deflection > 0) || !(r.span > 0))
+  if (!(r.span > 0))
     return r;
   const double L = r.span, b = r.load_length;
-  r.flexural_modulus_point =
-      r.load / (2 * r.deflection) * (L * L * L / (24 * I) + L * fs * (1 + nu) / A); // eq. 67
-  const double bracket69 =
+  r.compliance_factor_point = L * L * L / (24 * I) + L * fs * (1 + nu) / A; // eq. 67
+  r.compliance_factor =
       (8 * L * L * L - 4 * b * b * L + b * b * b) / (192 * I) + fs * (L - b) * (1 + nu) / A;
-  r.flexural_modulus = r.load / (2 * r.deflection) * bracket69;               // eq. 69
-  r.flexural_modulus_bottom = r.load / (2 * r.bottom_deflection) * bracket69; // bottom only
+  if (!(r.deflection > 0))
+    return r;
+  r.flexural_modulus_point = r.load / (2 * r.deflection) * r.compliance_factor_point;
+  r.flexural_modulus = r.load / (2 * r.deflection) * r.compliance_factor;               // eq. 69
+  r.flexural_modulus_bottom = r.load / (2 * r.bottom_deflection) * r.compliance_factor; // bottom
   return r;
+}
+
+ModulusFit fit_flexural_modulus(const std::vector<double>& deflection,
+                                const std::vector<double>& load, const FlexuralResponse& geometry)
+{
+  ModulusFit fit;
+  double suu = 0, suf = 0;
+  for (std::size_t k = 0; k < deflection.size() && k < load.size(); ++k)
+  {
+    const double u = std::abs(deflection[k]), f = std::abs(load[k]);
+    suu += u * u, suf += u * f;
+    fit.points += u > 0;
+  }
+  if (fit.points < 2 || !(suu > 0))
+    return fit;
+  fit.youngs_modulus = suf / suu / 2 * geometry.compliance_factor; // eq. 69 with F/delta = slope
+  return fit;
+}
+
+double largest_rotation(const ParticleStore& p, const BondStore& b)
+{
+  double largest = 0;
+  for (const Quat& q : p.orientation) // angle = 2 atan2(|vector part|, |w|)
+    largest = std::max(largest, 2 * std::atan2(q.vec().norm(), std::abs(q.w())));
+  for (std::size_t k = 0; k < b.size(); ++k)
+  {
+    const auto i = std::size_t(b.a[k]), j = std::size_t(b.b[k]);
+    const Vec3 now = p.position[j] - p.position[i];
+    const Vec3 then = p.reference_position[j] - p.reference_position[i];
+    largest = std::max(largest, std::atan2(now.cross(then).norm(), now.dot(then)));
+  }
+  return largest;
 }
 } // namespace dembridge::dem

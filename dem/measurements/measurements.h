@@ -9,8 +9,9 @@
 //    d, the lateral strain is the change of the distance between the particles within 1.5 r of
 //    the two faces normal to d divided by that distance, and nu_ad = -eps_d / eps_axial.
 // Signs: tension positive.
-#include "dem/model/groups.h"
+#include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
+#include "dem/model/groups.h"
 
 namespace dembridge::dem
 {
@@ -61,9 +62,25 @@ struct FlexuralResponse
   double flexural_modulus_point = 0;  ///< eq. 67
   double flexural_modulus = 0;        ///< eq. 69
   double flexural_modulus_bottom = 0; ///< eq. 69, bottom deflection
+  /// E_f 2 delta / F of eq. 67 and eq. 69: the bracketed compliance factors (1/m^2), from the
+  /// geometry alone (0 without a span)
+  double compliance_factor_point = 0, compliance_factor = 0;
 };
 
 FlexuralResponse flexural_response(const ParticleStore& p, const Group& pin, const Group& roller,
                                    const Group& loaded, const Group& bottom, int span_axis,
                                    int load_axis, double poisson_ratio, double form_factor);
+
+/// Eq. 69 with F/delta from the load-deflection curve: the least-squares slope through the origin
+/// (the beam starts unloaded at rest) of |load| over |deflection| (delta as flexural_response's:
+/// the mean of the loaded and bottom groups' deflections), times compliance_factor / 2 of
+/// @p geometry. Every record counts: the slope through the origin weighs the early transient by
+/// its small deflection, and averages the ringing of an explicit run.
+ModulusFit fit_flexural_modulus(const std::vector<double>& deflection,
+                                const std::vector<double>& load, const FlexuralResponse& geometry);
+
+/// The largest rotation from the reference configuration (rad): of any particle (the angle of
+/// its orientation) and of any bond's axis (the angle between x_b - x_a and X_b - X_a). A
+/// solution linearised in the rotations (the static solver) is accurate while this is small.
+double largest_rotation(const ParticleStore& p, const BondStore& b);
 } // namespace dembridge::dem

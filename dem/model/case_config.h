@@ -4,6 +4,7 @@
 #include "dem/bonds/bond_model.h"
 #include "dem/bonds/bond_strength.h"
 #include "dem/contacts/contact_config.h"
+#include "dem/microstructure/microstructure.h"
 #include "dem/model/groups.h"
 #include "dem/model/loads.h"
 #include <functional>
@@ -63,6 +64,7 @@ struct LoadConfig
 {
   Load load;
   std::string group;
+  std::string ratio_load; ///< a pressure's sigma_ref load (Load::ratio_load), by name
 };
 
 struct BondConfig
@@ -121,6 +123,8 @@ struct CaseConfig
   ContactConfig contacts;        ///< post-failure contacts (dem/contacts/); model none: off
   std::vector<WallConfig> walls; ///< rigid planes, contact partners of the particles
   DamageConfig damage;           ///< bond strengths and failure law (dem/bonds/bond_strength.h)
+  /// grains, weak planes and their bond classes (dem/microstructure/); off by default
+  MicrostructureConfig microstructure;
   /// Renumber particles and bonds into spatial order once built (dem/model/renumbering.h);
   /// false keeps the packing's own numbering (the tests compare the two).
   bool spatial_order = true;

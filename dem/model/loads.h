@@ -12,6 +12,15 @@
 // and both solvers read it the same way: the static solver as the displacement u(t) (final
 // state: value), the explicit solver as the velocity (u(t + dt) - u(t)) / dt over each step, so
 // the displacement is exact at every step.
+// A pressure is a normal stress on a face group (a confining stress, as servo walls or a
+// pressure cell apply it): the group total force at time t is
+//   F(t) = (p_0 factor(t) + R sigma_ref) A d
+// with d the unit direction it pushes (`value`, into the specimen), A the face's area, p_0 the
+// confining pressure and R the ratio to sigma_ref, the stress carried by another (prescribed
+// motion) load: its group's support reaction along its own value over its `area`, as measured
+// at the previous step. R > 0 holds sigma_2 = p_0 + R sigma_1 through a test whose sigma_1 is
+// driven by displacement (Smith & Schulson's proportional biaxial loading; p_0 = 0 for a fixed
+// ratio, R = 0 for a fixed confining stress).
 #include "dem/core/types.h"
 #include <limits>
 #include <string>
@@ -30,7 +39,8 @@ enum class LoadKind
   moment,
   velocity,
   angular_velocity,
-  displacement
+  displacement,
+  pressure
 };
 
 enum class RampProfile
@@ -49,6 +59,12 @@ struct Load
   double ramp_time = 0.0;      ///< s
   double end_time = std::numeric_limits<double>::infinity(); ///< s
   RampProfile profile = RampProfile::linear;                 ///< displacement loads
+  /// m^2: a pressure's face area; a load another one's ratio refers to: the area its reaction
+  /// acts on (sigma_ref = reaction / area)
+  double area = 0;
+  double pressure = 0; ///< Pa, p_0 of a pressure (ramped as a force)
+  double ratio = 0;    ///< R of a pressure
+  int ratio_load = -1; ///< index of the load giving sigma_ref; -1: none
 
   /// Fraction of the full value at time t (0 after end_time).
   double factor(double t) const

@@ -77,6 +77,9 @@ Model build_model(const CaseConfig& c)
       add_bond(p, m.bonds, c.bonds.material, i, j);
     mark_reference_configuration(p);
   }
+  if (m.bonds.size() == 0 && !c.contacts.enabled() && p.size() == 1)
+    throw InputError("Particles: the case has one particle, and a bonded model needs at least "
+                     "two (no bond can form)");
   if (m.bonds.size() == 0 && !c.contacts.enabled()) // contacts alone make a granular model
     throw InputError("Bonds: no bond was formed (contact radius multiplier " +
                      std::to_string(c.bonds.contact_radius_multiplier) +
@@ -86,7 +89,16 @@ Model build_model(const CaseConfig& c)
   if (c.damage.law.mode != FailureMode::none && c.run.static_solver)
     throw InputError("Damage/failure: the static solver solves the linear, undamaged bond "
                      "network; bond failure needs Simulation/solver = explicit");
-  assign_bond_strengths(m.bonds, c.damage, &m.particles.reference_position);
+  std::array<StrengthMeans, bond_class_count> class_means{};
+  if (c.microstructure.enabled()) // grains and bond classes, before the strengths they pick
+  {
+    const auto classes = bond_class_configs(c.microstructure, c.bonds.material, c.damage);
+    m.microstructure = apply_microstructure(p, m.bonds, c.microstructure, classes);
+    class_means = class_strength_means(classes, c.damage);
+  }
+  assign_bond_strengths(m.bonds, c.damage, &m.particles.reference_position,
+                        c.microstructure.enabled() ? std::span<const StrengthMeans>(class_means)
+                                                   : std::span<const StrengthMeans>());
 
   if (c.groups.size() > 32)
     throw InputError("Groups/names: at most 32 groups");
@@ -125,6 +137,7 @@ Model build_model(const CaseConfig& c)
                        "over a positive time (a jump is an infinite velocity)");
     m.loads.push_back(l);
   }
+  check_pressure_loads(c, m);
   check_loads_act_on_free_dofs(m);
   // Spatial order (renumbering.h) of the built specimen: strengths, groups and explicit bonds
   // were resolved in the user's numbering, and move with their particles and bonds; outputs

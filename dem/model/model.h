@@ -23,6 +23,8 @@ struct Model
   double time_step = 0;
   double packing_volume = 0; ///< m^3: the box of a random packing, else the particles' extent
   double porosity = 0;       ///< 1 - sum of sphere volumes / packing_volume
+  /// grains (seeds, c-axes) and bonds per class; empty without a microstructure
+  MicrostructureSummary microstructure;
   /// Forces beside the bonds (contacts, walls), attached to the explicit solver by run_explicit.
   std::vector<std::shared_ptr<StepContribution>> contributions;
 

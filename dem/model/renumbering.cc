@@ -59,7 +59,7 @@ void renumber_particles(ParticleStore& p, BondStore& b, std::vector<Group>* grou
   permute(p.orientation, order), permute(p.force, order), permute(p.torque, order);
   permute(p.radius, order), permute(p.mass, order), permute(p.inertia, order);
   permute(p.dof_mask, order), permute(p.group_mask, order);
-  permute(p.coordination, order), permute(p.id, order);
+  permute(p.coordination, order), permute(p.id, order), permute(p.grain, order);
   std::vector<std::int32_t> new_index(n);
   for (std::size_t i = 0; i < n; ++i)
     new_index[order[i]] = std::int32_t(i);

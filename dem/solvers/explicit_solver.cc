@@ -26,6 +26,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
     throw InputError("Damping/mass damping: must be >= 0 and below 1 / time step (" +
                      std::to_string(1 / settings_.time_step) + " 1/s)");
   settings_.threads = std::max(1, settings_.threads);
+  owned_ = std::min(settings_.owned_particles, p_.size());
   std::vector<char> touched(p_.size(), 0);
   for (const auto& c : constraints_)
     for (int i : groups_.at(c.group).members)
@@ -42,6 +43,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   prescribed_w_.assign(constrained_.size(), Vec3::Zero());
   constrained_w_.resize(constrained_.size());
   constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
+  applied_pressure_.assign(loads_.size(), 0.0);
   for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
     for (int i : groups_[g].members)
       p_.group_mask[i] |= 1u << g;
@@ -107,10 +109,31 @@ void ExplicitSolver::apply_loads()
   for (const auto& c : constraints_)
     for (int i : groups_[c.group].members)
       p_.dof_mask[i] |= c.dofs;
-  for (const auto& l : loads_)
+  for (std::size_t k = 0; k < loads_.size(); ++k)
   {
+    const Load& l = loads_[k];
     const auto& members = groups_[l.group].members;
-    if (l.prescribes_motion())
+    if (l.kind == LoadKind::pressure)
+    {
+      // F = (p_0 factor(t) + R sigma_ref) A d (loads.h), sigma_ref from the last step's reactions
+      const double p =
+          l.active(t) ? l.pressure * l.factor(t) +
+                            (l.ratio_load >= 0 ? l.ratio * reference_stress(l.ratio_load) : 0.0)
+                      : 0.0;
+      const double per_particle = l.area / double(members.size());
+      const Vec3 share = l.value * (p * per_particle);
+      // trapezoidal work with the previous step's pressure
+      const Vec3 mean_share =
+          steps_ > 0 ? Vec3(l.value * (0.5 * (p + applied_pressure_[k]) * per_particle))
+                     : Vec3::Zero();
+      applied_pressure_[k] = p;
+      for (int i : members)
+      {
+        p_.force[i] += share;
+        energy_.external += dt * mean_share.dot(p_.velocity[i]);
+      }
+    }
+    else if (l.prescribes_motion())
     {
       if (!l.active(t + 0.5 * dt))
         continue;
@@ -149,11 +172,24 @@ void ExplicitSolver::apply_loads()
   }
 }
 
+double ExplicitSolver::reference_stress(int load) const
+{
+  const Load& l = loads_[std::size_t(load)];
+  const Vec3 direction = l.value.normalized();
+  double reaction = 0;
+  for (int i : groups_[l.group].members)
+  {
+    const std::size_t c = slot(i);
+    reaction += constrained_reaction_[c].head<3>().dot(direction);
+  }
+  return reaction / l.area;
+}
+
 template <bool record> void ExplicitSolver::integrate()
 {
   const double dt = settings_.time_step, gamma = settings_.particle_damping;
   const double mass_damping = settings_.mass_damping;
-  const std::size_t n = p_.size();
+  const std::size_t n = owned_; // ghosts (distributed runs) are their owners' to integrate
   double dissipation = 0, kinetic = 0, vmax2 = 0, lead = 0, unbalanced = 0;
   long n_free = 0;
   const std::size_t n_blocked = n - n % 8; // particles whose orientation turns in blocks of 8
@@ -282,6 +318,7 @@ template <bool record> void ExplicitSolver::integrate()
     energy_.kinetic = kinetic;
     max_speed_ = std::sqrt(vmax2);
     unbalanced_mean_ = n_free > 0 ? unbalanced / double(n_free) : 0.0;
+    unbalanced_sum_ = unbalanced, n_free_ = n_free;
   }
   // Work of supports with prescribed motion: 1/2 (R^{n-1} + R^n) . (x^n - x^{n-1}).
   for (std::size_t c = 0; c < constrained_.size(); ++c)
@@ -346,6 +383,48 @@ Vec3 ExplicitSolver::group_force(int group) const
 Vec3 ExplicitSolver::group_mean_displacement(int group) const
 {
   return mean_displacement(p_, groups_.at(group));
+}
+
+ExplicitSolver::RunningState ExplicitSolver::take_running_state()
+{
+  RunningState s;
+  s.time = time_, s.steps = steps_, s.energy = energy_, s.damping_work = damping_work_;
+  s.max_speed = max_speed_, s.unbalanced_mean = unbalanced_mean_;
+  s.unbalanced_ratio = unbalanced_ratio_, s.unbalanced = unbalanced_parts();
+  s.cracks = std::move(cracks_), s.broken_by_mode = broken_by_mode_;
+  cracks_.clear();
+  return s;
+}
+
+void ExplicitSolver::set_running_state(RunningState&& s)
+{
+  time_ = s.time, steps_ = s.steps, energy_ = s.energy, damping_work_ = s.damping_work;
+  max_speed_ = s.max_speed, unbalanced_mean_ = s.unbalanced_mean;
+  unbalanced_ratio_ = s.unbalanced_ratio;
+  unbalanced_sum_ = s.unbalanced.free_force, n_free_ = s.unbalanced.n_free;
+  intact_force_ = s.unbalanced.intact_force, n_intact_ = s.unbalanced.n_intact;
+  const std::size_t capacity = cracks_.capacity(); // the failure law's reserve
+  cracks_ = std::move(s.cracks);
+  cracks_.reserve(capacity);
+  broken_by_mode_ = s.broken_by_mode;
+}
+
+std::array<double, 6> ExplicitSolver::support_reaction(std::size_t i) const
+{
+  std::array<double, 6> r{};
+  const std::size_t c = slot(int(i));
+  if (c < constrained_.size() && constrained_[c] == int(i))
+    for (int k = 0; k < 6; ++k)
+      r[std::size_t(k)] = constrained_reaction_[c][k];
+  return r;
+}
+
+void ExplicitSolver::set_support_reaction(std::size_t i, const std::array<double, 6>& reaction)
+{
+  const std::size_t c = slot(int(i));
+  if (c < constrained_.size() && constrained_[c] == int(i))
+    for (int k = 0; k < 6; ++k)
+      constrained_reaction_[c][k] = reaction[std::size_t(k)];
 }
 
 double ExplicitSolver::last_ramp_end() const

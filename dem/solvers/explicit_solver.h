@@ -5,7 +5,8 @@
 //
 // One step at time t_n (positions x^n, velocities v^{n-1/2}):
 //   1. bond forces from x^n, q^n (unified law, bond_kernel.h), dashpots from v^{n-1/2};
-//   2. external forces and moments of the loads at t_n;
+//   2. external forces and moments of the loads at t_n (a pressure's ratio part from the
+//      support reactions of step n-1);
 //   3. particle damping F''_i = -gamma |F_i| sign(v_i) per component (paper eq. 11-12), and
 //      mass damping -c m v^{n-1/2} (lagged: explicit, stable for c dt < 2);
 //   4. v^{n+1/2} = v^{n-1/2} + dt F/m (eq. 40), w likewise with I (eq. 44); constrained DOFs
@@ -29,6 +30,7 @@
 #include "dem/model/loads.h"
 #include "dem/solvers/step_contribution.h"
 #include <array>
+#include <limits>
 #include <vector>
 
 namespace dembridge::dem
@@ -41,6 +43,12 @@ struct SolverSettings
   /// c (1/s): mass-proportional damping -c m v^{n-1/2} on every particle's translation (what
   /// Coupling/mass damping applies in a coupled run, so that a full-DEM run can match it)
   double mass_damping = 0;
+  /// Distributed runs (distributed/): the particles [0, owned_particles) are this rank's, the
+  /// rest ghosts, copies of other ranks' particles that the caller refreshes between steps. A
+  /// step integrates the owned particles only; a bond with a ghost end is held by both ranks
+  /// and computed alike on both, and books its energies, failure and crack log entry on the
+  /// rank that owns its end a only. The default: every particle is owned.
+  std::size_t owned_particles = std::numeric_limits<std::size_t>::max();
 };
 
 class ExplicitSolver
@@ -81,12 +89,58 @@ public:
   /// Broken bonds whose failure was governed by tension / by shear.
   long broken_bonds(CrackMode mode) const { return broken_by_mode_[int(mode)]; }
   const std::vector<Load>& loads() const { return loads_; }
+  /// The stores the solver advances; bond indices are in its order (CrackEvent::bond).
+  const ParticleStore& particles() const { return p_; }
+  const BondStore& bonds() const { return b_; }
+
+  /// The unbalanced-force ratio's parts at the last record (distributed runs add them over
+  /// ranks): the sum of |net force| over the particles with a free translation and their
+  /// count, the sum of |F_c| over the intact bonds and their count.
+  struct UnbalancedParts
+  {
+    double free_force = 0;
+    long n_free = 0;
+    double intact_force = 0;
+    long n_intact = 0;
+  };
+  UnbalancedParts unbalanced_parts() const
+  {
+    return {unbalanced_sum_, n_free_, intact_force_, n_intact_};
+  }
+
+  /// What a step carries from the steps before it beside the stores: time and step, the
+  /// energy accumulators, the last record's figures, the crack log. Distributed runs move it
+  /// into the solver they rebuild over refilled stores when particles change ranks, and set
+  /// summed figures into a solver that only reports them (rank 0's whole model).
+  struct RunningState
+  {
+    double time = 0;
+    long steps = 0;
+    EnergyBalance energy;
+    double damping_work = 0, max_speed = 0, unbalanced_mean = 0, unbalanced_ratio = 0;
+    UnbalancedParts unbalanced;
+    std::vector<CrackEvent> cracks;
+    std::array<long, 2> broken_by_mode{};
+  };
+  /// Moves the state out (the crack log with it); the solver is not stepped again after.
+  RunningState take_running_state();
+  void set_running_state(RunningState&& s);
+  /// The support reaction (force, moment) of particle i at the last step: what the work of
+  /// its prescribed motion reads next step; zero for a particle without constraints.
+  std::array<double, 6> support_reaction(std::size_t i) const;
+  void set_support_reaction(std::size_t i, const std::array<double, 6>& reaction);
 
   /// Sum over the group of the particle forces of the last step: on constrained DOFs this is
   /// the support reaction, elsewhere the unbalanced force.
   Vec3 group_force(int group) const;
   /// Mean displacement of the group's particles from the reference configuration.
   Vec3 group_mean_displacement(int group) const;
+  /// The pressure (Pa) load @p load applied at the last step (loads.h: p_0 factor(t) + R
+  /// sigma_ref); 0 for other kinds.
+  double applied_pressure(std::size_t load) const { return applied_pressure_.at(load); }
+  /// sigma_ref of loads.h: the support reaction on load @p load's group along its value, over
+  /// its area, at the last step.
+  double reference_stress(int load) const;
   /// Latest end of any load ramp: after it, loads are constant.
   double last_ramp_end() const;
 
@@ -137,6 +191,7 @@ private:
   std::vector<Constraint> constraints_;
   std::vector<Load> loads_;
   SolverSettings settings_;
+  std::size_t owned_ = 0; ///< particles [0, owned_) are integrated (SolverSettings)
   double time_ = 0;
   long steps_ = 0;
   EnergyBalance energy_;
@@ -151,6 +206,8 @@ private:
   bool sums_hold_evaluation_ = false; ///< evaluate_bond_forces left dashpot parts behind
   double max_speed_ = 0;
   double unbalanced_mean_ = 0; ///< mean free net force, set by integrate<true>
+  double unbalanced_sum_ = 0;  ///< its sum and count
+  long n_free_ = 0;
   double unbalanced_ratio_ = 0;
   double intact_force_ = 0; ///< sum of |F_c| over the intact bonds at the last record
   long n_intact_ = 0;
@@ -162,6 +219,7 @@ private:
   std::vector<Vec3> constrained_w_;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vector6> constrained_reaction_; ///< support reactions of the previous step
+  std::vector<double> applied_pressure_;      ///< per load: a pressure's value at the last step
   /// Bond ranges: phase 0 ranges run in parallel (one per chunk), then phase 1 (cut bonds
   /// between chunks s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> phases_;

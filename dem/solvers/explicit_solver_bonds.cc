@@ -23,6 +23,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   double* sums = particle_sums_.data(); // per particle, the records' layout (bond_block.h)
   [[maybe_unused]] const FailureLaw& law = b_.failure;
   [[maybe_unused]] const double dt = settings_.time_step;
+  [[maybe_unused]] const int owned = int(owned_);
   const BondLawArrays arrays(p_, b_);
   BondBlock block;
   BondForces f;
@@ -102,7 +103,8 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
           {
             // released: the stored energy in the scheme's time-centred form (eq. 5 with dD = 1)
             const double released = f.strain_energy + 0.5 * dt * elastic_power();
-            fracture += released;
+            if (ia < owned) // one rank books a bond held by two (SolverSettings)
+              fracture += released;
             b_.dissipated[k] = released;
             fail(released, shear_governs() ? CrackMode::shear : CrackMode::tension);
             continue;
@@ -127,7 +129,8 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
           const double D = softening_damage(kappa, b_.kappa_ultimate[k]); // eq. (3)
           const double released =
               (D - b_.damage[k]) * (f.strain_energy + 0.5 * dt * elastic_power());
-          fracture += released;
+          if (ia < owned)
+            fracture += released;
           b_.dissipated[k] += released;
           b_.damage[k] = D;
           if (D >= 1.0)
@@ -156,13 +159,16 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
       upper_sum.store(upper_at);
       if constexpr (record)
       {
-        if constexpr (failure == FailureMode::none)
-          strain += f.strain_energy;
-        else
-          strain += carried * f.strain_energy; // secant: (1 - D) U_e
-        if (b_.state[k] == BondState::intact)
-          intact_force += std::sqrt(f.Fc[0] * f.Fc[0] + f.Fc[1] * f.Fc[1] + f.Fc[2] * f.Fc[2]),
-              ++intact;
+        if (ia < owned) // booked by the rank that owns end a (SolverSettings)
+        {
+          if constexpr (failure == FailureMode::none)
+            strain += f.strain_energy;
+          else
+            strain += carried * f.strain_energy; // secant: (1 - D) U_e
+          if (b_.state[k] == BondState::intact)
+            intact_force += std::sqrt(f.Fc[0] * f.Fc[0] + f.Fc[1] * f.Fc[1] + f.Fc[2] * f.Fc[2]),
+                ++intact;
+        }
         if (records)
         {
           b_.force[k] = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
@@ -207,6 +213,9 @@ void ExplicitSolver::compute_bond_forces()
     p_.torque[std::size_t(i)] = Vec3(r + record_moment);
     std::fill(r + record_force, r + record_dashpot_force, 0.0);
   }
+  // ghosts' dashpot parts too: integrate, which zeroes them, covers the owned particles only
+  if constexpr (dashpots)
+    std::fill(sums + S * owned_, sums + S * p_.size(), 0.0);
   if constexpr (record)
   {
     energy_.strain = strain;
@@ -253,7 +262,10 @@ void ExplicitSolver::drain_crack_events()
       c.axis = (xb - xa).normalized();
       --p_.coordination[c.a];
       --p_.coordination[c.b];
+      const bool booked_here = std::size_t(c.a) < owned_; // a bond held by two ranks logs once
       c.a = p_.id[std::size_t(c.a)], c.b = p_.id[std::size_t(c.b)]; // the log shows user ids
+      if (!booked_here)
+        continue;
       ++broken_by_mode_[int(c.mode)];
       cracks_.push_back(c);
     }

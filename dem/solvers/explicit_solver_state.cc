@@ -2,11 +2,13 @@
 // leapfrog state is x^n, q^n, v^{n-1/2}, w^{n-1/2}; what else a step reads from the previous
 // ones is named here: the running energy sums (damping work half a step ahead), the support
 // reactions of the last step (the trapezoidal work of prescribed motion), the crack log and
-// the per-mode counts, and the last record's figures (max speed, unbalanced-force ratio).
+// the per-mode counts, the pressures of the last step, and the last record's figures (max
+// speed, unbalanced-force ratio).
 // Scratch that every step overwrites before reading or leaves zero (the bond loop's
 // per-particle sums, supports' velocities, failure buffers) is not stored.
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/run_state.h"
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -80,6 +82,20 @@ void ExplicitSolver::visit_state(StateArchive& a)
     for (std::size_t c = 0; c < constrained_reaction_.size(); ++c)
       for (int k = 0; k < 6; ++k)
         constrained_reaction_[c][k] = reaction[6 * c + std::size_t(k)];
+  }
+  // pressures applied at the last step (their trapezoidal work); only cases that have one
+  if (std::any_of(loads_.begin(), loads_.end(),
+                  [](const Load& l) { return l.kind == LoadKind::pressure; }))
+  {
+    std::vector<double> pressure = applied_pressure_;
+    a.io("applied_pressure", pressure);
+    if (a.loading())
+    {
+      if (pressure.size() != applied_pressure_.size())
+        throw InputError(a.where() + "applied_pressure: expected " +
+                         std::to_string(applied_pressure_.size()) + " values");
+      applied_pressure_ = pressure;
+    }
   }
   std::vector<std::int64_t> by_mode(broken_by_mode_.begin(), broken_by_mode_.end());
   a.io("broken_by_mode", by_mode);

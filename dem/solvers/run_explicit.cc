@@ -1,4 +1,5 @@
 #include "dem/solvers/run_explicit.h"
+#include "dem/core/progress.h"
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -42,8 +43,9 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  ExplicitSolver solver(model.particles, model.bonds, model.groups, model.constraints, model.loads,
-                        {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping});
+  ExplicitSolver solver(
+      model.particles, model.bonds, model.groups, model.constraints, model.loads,
+      {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping});
   for (const auto& contribution : model.contributions)
     solver.add_contribution(contribution.get());
   RunResult res;
@@ -62,7 +64,8 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
       loads_end = std::max(loads_end, l.end_time);
   RunProgress progress;
   progress.next_checkpoint_time = sched.checkpoint_interval;
-  observer.on_start(solver, progress); // a resumed run restores the state here
+  observer.on_start(solver, progress);             // a resumed run restores the state here
+  const StepRate step_rate(solver.steps(), start); // a resumed run's own steps, from its start
   std::vector<double>& ft = progress.frequency_time;
   std::vector<double>& fu = progress.frequency_displacement;
   const long expected = long(std::min(double(c.run.max_steps), c.run.end_time / model.time_step));
@@ -127,10 +130,9 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
     if (std::chrono::duration<double>(now - last_progress).count() > sched.progress_seconds)
     {
       last_progress = now;
-      const double wall = std::chrono::duration<double>(now - start).count();
-      const double rate = solver.steps() / wall;
       const double frac = std::min(1.0, solver.time() / c.run.end_time);
-      observer.on_progress(solver, frac, rate, rate > 0 ? (expected - solver.steps()) / rate : 0);
+      observer.on_progress(solver, frac, step_rate.per_second(solver.steps(), now),
+                           step_rate.seconds_left(solver.steps(), expected, now));
     }
     if (stop)
       break;
@@ -157,6 +159,7 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
       std::raise(SIGKILL);
   }
   res.steps = solver.steps();
+  res.steps_made = step_rate.steps_made(solver.steps());
   res.time = solver.time();
   res.energy = solver.energy();
   res.energy_balance_error = worst_error;

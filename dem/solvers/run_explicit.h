@@ -54,6 +54,7 @@ struct RunSchedule
 struct RunResult
 {
   long steps = 0;
+  long steps_made = 0; ///< by this run: a resumed run's since its checkpoint (wall_seconds' steps)
   double time = 0;
   double wall_seconds = 0;
   std::string stop_reason;

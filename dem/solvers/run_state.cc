@@ -41,6 +41,7 @@ void visit_bond_arrays(StateArchive& a, BondStore& b)
   a.io("damping_moment", b.damping_moment);
   a.io_enums("model", b.model);
   a.io_enums("state", b.state);
+  a.io_enums("bond_class", b.bond_class);
   a.io("force", b.force);
   a.io("moment", b.moment);
   a.io("tensile_strength", b.tensile_strength);
@@ -76,6 +77,8 @@ void check_lengths(const BondStore& stored, const BondStore& model, const std::s
     check("force", stored.force.size(), model.force.size());
     check("moment", stored.moment.size(), model.moment.size());
   }
+  // bond classes: empty without a microstructure, else one entry per bond
+  check("bond_class", stored.bond_class.size(), model.bond_class.size());
   // failure arrays: empty without a failure law, else one entry per bond
   check("tensile_strength", stored.tensile_strength.size(), model.tensile_strength.size());
   check("shear_strength", stored.shear_strength.size(), model.shear_strength.size());

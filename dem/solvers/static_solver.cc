@@ -253,8 +253,13 @@ StaticResult solve_static(Model& model, const StaticSettings& settings)
     }
     else
     {
+      if (l.kind == LoadKind::pressure && l.ratio != 0)
+        throw InputError("Load " + l.name + "/ratio: a pressure that follows another load's " +
+                         "stress needs the explicit solver (the static solver takes p_0 only)");
       // group total shared equally, as ExplicitSolver::apply_loads does
-      const Vec3 share = l.value * ((final_state ? 1.0 : l.factor(t)) / double(members.size()));
+      const Vec3 total =
+          l.kind == LoadKind::pressure ? Vec3(l.value * (l.pressure * l.area)) : l.value;
+      const Vec3 share = total * ((final_state ? 1.0 : l.factor(t)) / double(members.size()));
       for (int i : members)
         f.segment<3>(6 * i + offset) += share;
     }

@@ -24,7 +24,9 @@ dynamics) every run of a DEM case is made, on one rank or with --np N. Then the 
 line and exit code 1: a checkpoint of
 another case, a fresh run into a folder that holds a checkpoint, --resume without one, a
 checkpoint of the other mode (a DEM run's resumed as a coupled case and vice versa), a history
-file cut shorter than the checkpoint's record of it. Without
+file cut shorter than the checkpoint's record of it or deleted (named by its full path; the
+refused resume leaves the folder's files as they were). A resumed DEM run's
+bond_updates_per_second counts its own steps (since the checkpoint) over its own time. Without
 --expect-cracks and --coupled also: a resume on two threads completes with the same bonds and E within 1e-6.
 Plain python3 (no numpy).
 """
@@ -67,6 +69,83 @@ def kill_session(sid):
 def fail(msg):
     print("FAIL: " + msg)
     sys.exit(1)
+
+
+def compare_folders(ref, folder):
+    """Every file of the resumed run in @p folder as the uninterrupted run's in @p ref (the
+    summary without its timing and provenance keys, deal.II's files without their date line);
+    the resumed run's rates count only its own steps."""
+    names = sorted(os.listdir(ref))
+    got = sorted(os.listdir(folder))
+    if names != got:
+        fail("%s holds %s, the reference %s" % (folder, got, names))
+    for name in names:
+        a, b = os.path.join(ref, name), os.path.join(folder, name)
+        if name == "timing.log":  # deal.II's wall-time table (an FE run's)
+            continue
+        if name == "summary.json":
+            with open(a) as f:
+                ja = json.load(f)
+            with open(b) as f:
+                jb = json.load(f)
+            if "resumed_from" not in jb:
+                fail(folder + "/summary.json does not say it was resumed")
+            check_resumed_rate(folder, jb)
+            for k in VOLATILE:
+                ja.pop(k, None)
+                jb.pop(k, None)
+            for j in (ja, jb):  # the machine's free memory at the start
+                (j.get("memory_estimate") or {}).pop("available_bytes", None)
+            if ja != jb:
+                diff = [k for k in set(ja) | set(jb) if ja.get(k) != jb.get(k)]
+                fail("%s/summary.json differs from the reference in %s" % (folder, diff))
+        else:
+            with open(a, "rb") as f:
+                da = f.read()
+            with open(b, "rb") as f:
+                db = f.read()
+            if name.endswith((".vtu", ".pvtu", ".pvd")):
+                da, db = (b"\n".join(l for l in d.split(b"\n") if DEALII_DATE not in l)
+                          for d in (da, db))
+            if da != db:
+                fail("%s/%s differs from the reference (%d vs %d bytes)" %
+                     (folder, name, len(db), len(da)))
+    print("  %s: %d files identical to the reference" % (os.path.basename(folder), len(names)))
+
+
+def check_resumed_rate(folder, j):
+    """A resumed DEM run's bond_updates_per_second is its own steps (since the checkpoint) times
+    the bonds over its own solver time, not the total steps over it (no speed is asserted)."""
+    if "bond_updates_per_second" not in j:
+        return
+    own = j["steps"] - j["resumed_from"]["step"]
+    if not 0 < own < j["steps"]:
+        fail("%s: resumed at step %d of %d" % (folder, j["resumed_from"]["step"], j["steps"]))
+    expected = own * j["n_bonds"] / j["solver_seconds"]
+    if abs(j["bond_updates_per_second"] - expected) > 1e-9 * expected:
+        fail("%s: bond_updates_per_second %r, but the resumed run made %d steps of %d bonds in "
+             "%r s: %r" % (folder, j["bond_updates_per_second"], own, j["n_bonds"],
+                           j["solver_seconds"], expected))
+
+
+def folder_state(folder):
+    """{relative path: bytes} of every file under @p folder (the staging folder too)."""
+    state = {}
+    for root, _, files in os.walk(folder):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                state[os.path.relpath(path, folder)] = f.read()
+    return state
+
+
+def refused(r, expected, what):
+    """One line on stderr holding @p expected, exit code 1."""
+    lines = r.stderr.strip().splitlines()
+    if r.returncode != 1 or len(lines) != 1 or expected not in lines[0]:
+        fail("%s: expected exit 1 and one line with '%s', got %s: %s" %
+             (what, expected, r.returncode, r.stderr))
+    print("  refused (%s): %s" % (what, lines[0]))
 
 
 def main():
@@ -156,41 +235,7 @@ def main():
     print("reference: %d steps, checkpoints every %d steps" % (steps, first_checkpoint))
 
     def compare(folder):
-        names = sorted(os.listdir(ref))
-        got = sorted(os.listdir(folder))
-        if names != got:
-            fail("%s holds %s, the reference %s" % (folder, got, names))
-        for name in names:
-            a, b = os.path.join(ref, name), os.path.join(folder, name)
-            if name == "timing.log":  # deal.II's wall-time table (an FE run's)
-                continue
-            if name == "summary.json":
-                with open(a) as f:
-                    ja = json.load(f)
-                with open(b) as f:
-                    jb = json.load(f)
-                if "resumed_from" not in jb:
-                    fail(folder + "/summary.json does not say it was resumed")
-                for k in VOLATILE:
-                    ja.pop(k, None)
-                    jb.pop(k, None)
-                for j in (ja, jb):  # the machine's free memory at the start
-                    (j.get("memory_estimate") or {}).pop("available_bytes", None)
-                if ja != jb:
-                    diff = [k for k in set(ja) | set(jb) if ja.get(k) != jb.get(k)]
-                    fail("%s/summary.json differs from the reference in %s" % (folder, diff))
-            else:
-                with open(a, "rb") as f:
-                    da = f.read()
-                with open(b, "rb") as f:
-                    db = f.read()
-                if name.endswith((".vtu", ".pvtu", ".pvd")):
-                    da, db = (b"\n".join(l for l in d.split(b"\n") if DEALII_DATE not in l)
-                              for d in (da, db))
-                if da != db:
-                    fail("%s/%s differs from the reference (%d vs %d bytes)" %
-                         (folder, name, len(db), len(da)))
-        print("  %s: %d files identical to the reference" % (os.path.basename(folder), len(names)))
+        compare_folders(ref, folder)
 
     def killed_then_resumed(name, env_extra=None, external=False):
         folder = os.path.join(out, name)
@@ -236,13 +281,6 @@ def main():
     # refusals: one line, exit code 1
     folder = os.path.join(out, "refusals")
 
-    def refused(r, expected, what):
-        lines = r.stderr.strip().splitlines()
-        if r.returncode != 1 or len(lines) != 1 or expected not in lines[0]:
-            fail("%s: expected exit 1 and one line with '%s', got %s: %s" %
-                 (what, expected, r.returncode, r.stderr))
-        print("  refused (%s): %s" % (what, lines[0]))
-
     if run(folder, env_extra={"DEMBRIDGE_TEST_KILL_AFTER_STEP": str(first_checkpoint + 3)}).returncode \
             != -signal.SIGKILL:
         fail("refusals: the run was not killed")
@@ -260,11 +298,20 @@ def main():
     short = os.path.join(out, "short_history")
     shutil.rmtree(short, ignore_errors=True)
     shutil.copytree(folder, short)
-    part = os.path.join(short, ".partial", "history.csv" if fem else "history.csv.part")
+    part = os.path.abspath(
+        os.path.join(short, ".partial", "history.csv" if fem else "history.csv.part"))
     with open(part, "r+b") as f:
         f.truncate(10)
+    staged = folder_state(short)
     refused(run(short, resume=True),
-            "history.csv: 10 bytes, but the checkpoint was written after ", "a shorter history")
+            part + ": 10 bytes, but the checkpoint was written after ", "a shorter history")
+    # a deleted one is named by its full path; the refused resume leaves the folder as it was
+    os.remove(part)
+    del staged[os.path.relpath(part, short)]
+    refused(run(short, resume=True), part + ": missing, but the checkpoint was written after ",
+            "a missing history")
+    if folder_state(short) != staged:
+        fail("a refused resume changed the files of its folder")
     if fem:
         refused(run(os.path.join(out, "static"), ["--set", "FEM/problem=static"]),
                 "Output/checkpoint interval: a static FE run (FEM/problem = static) has no time "

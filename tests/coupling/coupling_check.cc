@@ -2,6 +2,7 @@
 // first argument. Each prints its numbers and the reference with the tolerance, and exits 1 if a
 // check fails.
 //   wave        a longitudinal pulse through the handshake band of a bar, both directions
+//   band_mass   the blended masses of particles and continuum sum to the body's
 //   ... (see main)
 #include "coupling/coupled_case.h"
 #include "coupling/coupled_problem.h"
@@ -175,10 +176,12 @@ void check_wave(MPI_Comm comm)
                 "energy balance %.3e\n",
                 from_continuum ? "continuum -> particles" : "particles -> continuum", r.reflected,
                 r.transmitted, r.balance);
-    check(r.reflected < 0.01, "reflected energy below 1 % of the incident");
-    check(std::abs(r.reflected + r.transmitted - 1) < 0.01,
-          "reflected + transmitted = 1 within 1 %");
-    check(r.balance < 0.01, "total energy conserved to 1 %");
+    // measured: 3.02e-5 reflected both ways, reflected + transmitted = 1 to 1e-9, balance
+    // 1.4e-10 and 3.1e-10 (a continuum mass left unweighted in the band: 5.7e-3 reflected)
+    check(r.reflected < 1e-4, "reflected energy below 1e-4 of the incident");
+    check(std::abs(r.reflected + r.transmitted - 1) < 1e-6,
+          "reflected + transmitted = 1 within 1e-6");
+    check(r.balance < 2e-9, "total energy conserved to 2e-9");
   }
 }
 // ------------------------------------------------------------------------------------------
@@ -196,6 +199,9 @@ struct Block
   /// of radius 10 d about (12 d, 12 d, 12 d), in a cube of 24 d).
   std::string region_file;
   double domain = 16; ///< the cube's side in spacings d
+  /// The particle block across the whole cube in y and z (a slab 10 d thick): only its two x
+  /// faces are coupled.
+  bool slab = false;
 
   double spacing() const { return 2 * radius; }
   std::unique_ptr<coupling::CoupledProblem>
@@ -209,8 +215,8 @@ struct Block
     c.particles.radius = radius;
     c.particles.density = density;
     c.particles.scale_density_by_porosity = true;
-    c.particles.box_size = Vec3::Constant(10 * d);
-    c.particles.origin = Vec3::Constant(3 * d);
+    c.particles.box_size = slab ? Vec3(10 * d, domain * d, domain * d) : Vec3::Constant(10 * d);
+    c.particles.origin = slab ? Vec3(3 * d, 0, 0) : Vec3::Constant(3 * d);
     c.bonds.material = bar.material();
     c.run.threads = 1;
     fem::Parameters fe;
@@ -237,6 +243,57 @@ struct Block
     return problem;
   }
 };
+
+// ------------------------------------------------------------------------------------------
+/// The coupled model's mass: the particles' blended masses w_p m_p plus the continuum's lumped
+/// masses weighted by w_M (one component per node), every rank's share summed.
+double blended_mass(coupling::CoupledProblem& problem, MPI_Comm comm)
+{
+  double particles = 0;
+  for (const double m : problem.model().particles.mass) // rank 0 holds the particles
+    particles += m;
+  const auto& lumped = problem.continuum().lumped_mass();
+  double continuum = 0;
+  for (const auto i : lumped.locally_owned_elements())
+    continuum += lumped(i);
+  return dealii::Utilities::MPI::sum(particles + continuum / 3, comm);
+}
+
+// The band's mass partition: a band particle takes the share of its mass its FE nodes lack
+// (blending.h), so particles and continuum together weigh what the body weighs, rho V (the
+// lattice's spheres carry rho d^3 each). Exact (1e-9; measured 1e-14) where the band is one
+// plane's: the bar of the wave checks (h = d) and a slab of particles across a cube, coupled on
+// its two faces. Where the bands of two faces meet (a block coupled on all six faces) the
+// weight has a kink along the edges' diagonals that neither the FE quadrature nor the nodal
+// ratio follows: there the sum is 2.3e-3 of the body's mass light (0.12 % of the band's), held
+// below 5e-3. A continuum whose lumped mass is left unweighted in the band counts the band's
+// mass twice: +0.22 % in the bar, +3.8 % in the slab, +1.8 % in the block.
+void check_band_mass(MPI_Comm comm)
+{
+  auto report = [](const char* what, double mass, double body, double limit)
+  {
+    std::printf("%s: particles + continuum %.12e kg, rho V %.12e kg (rel. %.1e)\n", what, mass,
+                body, mass / body - 1);
+    char text[160];
+    std::snprintf(text, sizeof text, "%s: blended masses sum to rho V within %.0e", what, limit);
+    check(std::abs(mass / body - 1) < limit, text);
+  };
+  {
+    const Bar bar;
+    auto problem = bar.make(comm);
+    report("bar (the wave checks)", blended_mass(*problem, comm),
+           bar.density * (bar.fe_length + bar.particle_length) * std::pow(bar.width(), 2), 1e-9);
+  }
+  for (const bool slab : {true, false})
+  {
+    Block block;
+    block.slab = slab;
+    auto problem = block.make(comm);
+    report(slab ? "slab across a cube (two coupled faces)" : "block in a cube (six coupled faces)",
+           blended_mass(*problem, comm),
+           block.density * std::pow(block.domain * block.spacing(), 3), slab ? 1e-9 : 5e-3);
+  }
+}
 
 /// Largest forces after one step from a given state, over the scale of the forces a strain of
 /// 1e-4 puts on a bond (k_n 1e-4 d): bonds, net particle forces, FE internal forces, ties.
@@ -503,6 +560,7 @@ int main(int argc, char** argv)
   }
   const std::map<std::string, std::function<void(MPI_Comm)>> checks = {
       {"wave", check_wave},
+      {"band_mass", check_band_mass},
       {"patch_rigid", check_patch_rigid},
       {"patch_strain", check_patch_strain},
       {"patch_rigid_volume", check_patch_rigid_volume},

@@ -23,6 +23,11 @@
                                                            runs COMMAND with --set PARAM=A[KEY]
                                                            added (a run that takes a number from
                                                            another run's summary), its exit code
+    check_failure.py printed_figures RUN.out SUMMARY.json KEY...
+                                                           the figures `run` printed at its end
+                                                           hold each KEY ("  KEY  VALUE [unit]"),
+                                                           its value the summary's (to the 8
+                                                           printed digits; lists entry by entry)
     check_failure.py notch_crack CRACKS.csv TIP_X TIP_Z LOAD_Z DIAMETER
                                                            the first broken bond within two
                                                            diameters of the notch tip; the crack
@@ -117,6 +122,31 @@ def main(argv):
         for name in ("history.csv", "cracks.csv"):
             same = (da / name).read_bytes() == (db / name).read_bytes()
             check(same, f"{name} byte for byte ({(da / name).stat().st_size} bytes)")
+    elif cmd == "printed_figures":
+        out, summary, keys = argv[2], json.load(open(argv[3])), argv[4:]
+        text = open(out).read()
+        print(text)
+        table = text.split("figures of this run (summary.json):\n")[-1]
+        printed = {}
+        for line in table.splitlines():
+            if not line.startswith("  "):
+                break
+            words = line.split(None, 1)
+            printed[words[0]] = words[1].strip() if len(words) > 1 else ""
+        for key in keys:
+            node = summary
+            for part in key.split("."):
+                node = node[int(part)] if isinstance(node, list) else node.get(part)
+            if key not in printed:
+                check(False, f"{key}: not printed (summary.json: {node})")
+                continue
+            # the value, less a unit word at its end
+            words = printed[key].replace(",", " ").split()
+            numbers = [float(w) for w in words if w[0].isdigit() or w[0] in "+-."]
+            expected = node if isinstance(node, list) else [node]
+            same = len(numbers) == len(expected) and all(
+                abs(a - float(b)) <= 1e-7 * abs(float(b)) for a, b in zip(numbers, expected))
+            check(same, f"{key}: printed {printed[key]}, summary.json {node}")
     elif cmd == "softening":
         path, stress_key, strain_key = argv[2], argv[3], argv[4]
         rows = list(csv.DictReader(open(path)))

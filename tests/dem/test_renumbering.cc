@@ -59,7 +59,7 @@ CaseConfig compression(Kind kind, bool spatial_order)
   push.value = Vec3(-1e-6, 0, 0);
   push.components = 1;
   push.ramp_time = 1;
-  c.loads = {{push, "loaded"}};
+  c.loads = {{push, "loaded", ""}};
   c.run.static_solver = true;
   c.spatial_order = spatial_order;
   return c;

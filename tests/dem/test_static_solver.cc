@@ -73,14 +73,16 @@ CaseConfig lattice_case(ParticleSource::Kind kind)
 } // namespace
 
 // Paper case 1 (Table 4): 10 bonds over 4 m, 100 kN tip load. Beam-element bonds are exact for a
-// tip-loaded cantilever, so the linear solve must hit eq. 29 to round-off.
+// tip-loaded cantilever, so the linear solve must hit eq. 29 to round-off: 1e-11 here and for
+// the simply supported beams (measured 5e-14 ... 1.4e-12); the published PBM figure (4 digits)
+// within 1e-4 (5e-5).
 TEST(StaticCantilever, TimoshenkoMatchesEq29)
 {
   const double expected = cantilever_timoshenko(1e5, 4, 200e9, 0.3, 0.2);
   StaticResult r;
   const double got = static_deflection(cantilever(BondModel::timoshenko, 10), &r);
   report("static case 1 TBBM", got, expected);
-  EXPECT_NEAR(got / expected, 1.0, 1e-6);
+  EXPECT_NEAR(got / expected, 1.0, 1e-11);
   EXPECT_EQ(r.n_dofs, 66);
   EXPECT_EQ(r.n_free_dofs, 60);
   EXPECT_EQ(r.method, "SimplicialLDLT");
@@ -91,7 +93,7 @@ TEST(StaticCantilever, EulerBernoulliMatchesBeamTheory)
   const double expected = cantilever_euler_bernoulli(1e5, 4, 200e9, 0.2);
   const double got = static_deflection(cantilever(BondModel::euler_bernoulli, 10));
   report("static case 1 EBBM", got, expected);
-  EXPECT_NEAR(got / expected, 1.0, 1e-6);
+  EXPECT_NEAR(got / expected, 1.0, 1e-11);
 }
 
 TEST(StaticCantilever, ParallelBondMatchesTable4)
@@ -99,7 +101,7 @@ TEST(StaticCantilever, ParallelBondMatchesTable4)
   const double published = 8.508e-3; // Table 4, PBM with kappa = 2 (1 + nu)
   const double got = static_deflection(cantilever(BondModel::parallel_bond, 10));
   report("static case 1 PBM", got, published);
-  EXPECT_NEAR(got / published, 1.0, 1e-3);
+  EXPECT_NEAR(got / published, 1.0, 1e-4);
 }
 
 // The clamp's reaction balances the tip load: force 100 kN up, moment F L about y.
@@ -127,7 +129,7 @@ TEST_P(StaticSimplySupported, MidspanDeflectionMatchesEqB1)
   const double expected = simply_supported_deflection(1000, 0.2 * (n - 1), 4e9, 0.3, 0.1);
   const double got = static_deflection(simply_supported_beam(n));
   report("static simply supported n=" + std::to_string(n), got, expected);
-  EXPECT_NEAR(got / expected, 1.0, 1e-6);
+  EXPECT_NEAR(got / expected, 1.0, 1e-11);
 }
 INSTANTIATE_TEST_SUITE_P(TableB1, StaticSimplySupported, ::testing::Values(3, 15, 31));
 
@@ -206,8 +208,9 @@ TEST_P(StaticVersusExplicit, LoadedEndAgreesWithinPointOnePercent)
             << t_static << " s (assembly " << s.assembly_seconds << ", " << s.method << " "
             << s.solve_seconds << "), explicit " << e.wall_seconds << " s, " << e.steps
             << " steps: ratio static/explicit " << t_static / e.wall_seconds << "\n";
-  EXPECT_LT((ue - us).norm() / us.norm(), 1e-3);
-  EXPECT_LT(worst, 1e-3);
+  // measured 6e-5 of |u| (the explicit run's rest tolerance)
+  EXPECT_LT((ue - us).norm() / us.norm(), 2e-4);
+  EXPECT_LT(worst, 2e-4);
   // The times are printed, not asserted: a wall-clock ratio fails under machine load (ctest -j);
   // the speed-up is measured by bench/study_bench.py (README, Performance).
 }

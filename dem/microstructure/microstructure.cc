@@ -1,0 +1,129 @@
+#include "dem/microstructure/microstructure.h"
+#include <sstream>
+
+namespace dembridge::dem
+{
+namespace
+{
+std::string number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string section(BondClass c)
+{
+  return c == BondClass::intra_grain ? "Bonds" : "Bond class " + std::string(bond_class_name(c));
+}
+} // namespace
+
+BondClassConfig BondClassConfig::of_specimen(const BondMaterial& material,
+                                             const DamageConfig& damage)
+{
+  return {material, damage.tensile_strength, damage.shear_strength, damage.cohesion};
+}
+
+std::array<BondClassConfig, bond_class_count> bond_class_configs(const MicrostructureConfig& config,
+                                                                 const BondMaterial& material,
+                                                                 const DamageConfig& damage)
+{
+  damage.validate(); // the specimen's own strengths first: the classes default to them
+  const BondClassConfig bulk = BondClassConfig::of_specimen(material, damage);
+  std::array<BondClassConfig, bond_class_count> classes{bulk, config.grain_boundary.value_or(bulk),
+                                                        config.weak_plane.value_or(bulk)};
+  for (std::size_t k = 1; k < bond_class_count; ++k)
+  {
+    const std::string where = section(BondClass(k));
+    classes[k].material.validate(where);
+    if (damage.law.mode == FailureMode::none)
+      continue;
+    auto require = [&](double v, const char* key)
+    {
+      if (!(v > 0) || !std::isfinite(v))
+        throw InputError(where + "/" + key + ": must be positive when Damage/failure is on (got " +
+                         number(v) + " Pa): the class has no strength");
+    };
+    require(classes[k].tensile_strength, "tensile strength");
+    if (damage.law.shear == ShearCriterion::constant)
+      require(classes[k].shear_strength, "shear strength");
+    else
+      require(classes[k].cohesion, "cohesion");
+  }
+  return classes;
+}
+
+std::array<StrengthMeans, bond_class_count>
+class_strength_means(const std::array<BondClassConfig, bond_class_count>& classes,
+                     const DamageConfig& damage)
+{
+  std::array<StrengthMeans, bond_class_count> means;
+  for (std::size_t k = 0; k < bond_class_count; ++k)
+    means[k] = {classes[k].tensile_strength, damage.law.shear == ShearCriterion::constant
+                                                 ? classes[k].shear_strength
+                                                 : classes[k].cohesion};
+  return means;
+}
+
+MicrostructureSummary
+apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig& config,
+                     const std::array<BondClassConfig, bond_class_count>& classes)
+{
+  MicrostructureSummary summary;
+  if (!config.enabled())
+    return summary;
+  const std::size_t n = p.size(), nb = b.size();
+  if (config.grains.enabled)
+  {
+    GrainMap map = assign_grains(p.reference_position, p.radius, config.grains);
+    p.grain = std::move(map.of_particle);
+    summary.grains = std::move(map.grains);
+    summary.columns = map.columns;
+  }
+  std::optional<WeakPlaneSet> planes = config.weak_planes;
+  std::vector<std::size_t> crossing; // bonds per plane offset
+  if (planes)
+  {
+    double mean_radius = 0;
+    for (double r : p.radius)
+      mean_radius += r / double(n);
+    check_weak_planes(*planes, 2 * mean_radius, "Microstructure/");
+    crossing.assign(planes->offsets.size(), 0);
+  }
+  b.bond_class.assign(nb, BondClass::intra_grain);
+  for (std::size_t k = 0; k < nb; ++k)
+  {
+    const int i = b.a[k], j = b.b[k];
+    BondClass c = BondClass::intra_grain;
+    if (!p.grain.empty() && p.grain[std::size_t(i)] != p.grain[std::size_t(j)])
+      c = BondClass::grain_boundary;
+    if (planes)
+    {
+      const PlaneCrossing x = crossed_planes(*planes, p.reference_position[std::size_t(i)],
+                                             p.reference_position[std::size_t(j)]);
+      if (x.count > 0)
+        c = BondClass::weak_plane, ++crossing[std::size_t(x.offset)];
+    }
+    b.bond_class[k] = c;
+    ++summary.bonds_per_class[std::size_t(c)];
+    if (c == BondClass::intra_grain)
+      continue;
+    // the class's constants, as add_bond computes them from the Bonds material
+    const BondMaterial& mat = classes[std::size_t(c)].material;
+    const BondStiffness s =
+        bond_stiffness(mat, b.rest_length[k], p.radius[std::size_t(i)], p.radius[std::size_t(j)]);
+    b.kn[k] = s.kn, b.ks[k] = s.ks, b.ktor[k] = s.ktor, b.kben[k] = s.kben;
+    b.contact_fraction[k] = s.contact_fraction, b.radius[k] = s.radius;
+    b.model[k] = mat.model;
+  }
+  for (std::size_t m = 0; m < crossing.size(); ++m)
+    if (crossing[m] == 0)
+      throw InputError("Microstructure/weak plane offsets: the plane" +
+                       std::string(planes->spacing > 0 ? "s" : "") + " at " +
+                       number(planes->offsets[m]) + " m" +
+                       (planes->spacing > 0 ? " (every " + number(planes->spacing) + " m)" : "") +
+                       " cross" + (planes->spacing > 0 ? "" : "es") +
+                       " no bond: outside the specimen, or between unbonded particles");
+  return summary;
+}
+} // namespace dembridge::dem

@@ -1,0 +1,85 @@
+#pragma once
+// A specimen's microstructure: grains (columnar_grains.h), weak planes (weak_planes.h) and the
+// bond classes they give (bonds/bond_class.h). Off by default: without grains and planes every
+// bond is formed from the Bonds and Damage values, as in a homogeneous specimen.
+//
+// Each bond, once formed, is classed by the particles it joins:
+//   weak_plane      its axis crosses a weak plane (whatever the grains)
+//   grain_boundary  otherwise, its particles lie in two grains
+//   intra_grain     otherwise
+// and takes its class's constants: the stiffnesses and contact point of bond_model.h from the
+// class's bond material, its strengths drawn around the class's means (bond_strength.h; the
+// failure law itself, criterion, friction angle, moment factor and fracture energies, is the
+// specimen's). Intra-grain bonds are the Bonds and Damage values; every class value defaults to
+// them. A class only picks per-bond constants at formation: the force loops read them as they
+// read a homogeneous specimen's.
+//
+// Springs in series (the check, tests/dem/test_microstructure.cc): on the simple cubic
+// lattice with spacing d, planes normal to x every n layers whose bonds are alpha times as
+// stiff leave each x-chain of N bonds with N/n weak ones, so
+//   1/E_x = (1/E) (1 - 1/n + 1/(alpha n)),   E_y = E_z = E                                  (1)
+// exactly (the lattice has no Poisson coupling: the y- and z-bonds do not deform in uniaxial
+// strain along x, and the planes cross no y- or z-bond).
+#include "dem/bonds/bond_store.h"
+#include "dem/bonds/bond_strength.h"
+#include "dem/core/particle_store.h"
+#include "dem/microstructure/columnar_grains.h"
+#include "dem/microstructure/weak_planes.h"
+#include <array>
+#include <optional>
+
+namespace dembridge::dem
+{
+/// The Bonds and Damage values of one bond class.
+struct BondClassConfig
+{
+  BondMaterial material;
+  double tensile_strength = 0; ///< sigma_t, Pa (mean)
+  double shear_strength = 0;   ///< tau_c, Pa (mean; constant criterion)
+  double cohesion = 0;         ///< c, Pa (mean; Mohr-Coulomb)
+
+  /// The intra-grain values: the Bonds material and the Damage means.
+  static BondClassConfig of_specimen(const BondMaterial& material, const DamageConfig& damage);
+};
+
+struct MicrostructureConfig
+{
+  ColumnarGrainsConfig grains;
+  std::optional<WeakPlaneSet> weak_planes;
+  /// Grain-boundary and weak-plane bonds; unset: the Bonds and Damage values.
+  std::optional<BondClassConfig> grain_boundary, weak_plane;
+
+  bool enabled() const { return grains.enabled || weak_planes.has_value(); }
+};
+
+/// Every class's values (intra-grain from @p material and @p damage, the others from the config
+/// or, where unset, the same), checked: the bond material (section "Bond class NAME") and, when
+/// @p damage has a failure law, positive strengths. Throws InputError naming Section/key.
+std::array<BondClassConfig, bond_class_count> bond_class_configs(const MicrostructureConfig& config,
+                                                                 const BondMaterial& material,
+                                                                 const DamageConfig& damage);
+
+/// The strength means of each class for assign_bond_strengths, by the shear criterion of
+/// @p damage.
+std::array<StrengthMeans, bond_class_count>
+class_strength_means(const std::array<BondClassConfig, bond_class_count>& classes,
+                     const DamageConfig& damage);
+
+/// What the microstructure gave a specimen: the grains (their seeds and c-axes), bond counts
+/// per class.
+struct MicrostructureSummary
+{
+  std::vector<Grain> grains;
+  std::size_t columns = 0;
+  std::array<std::size_t, bond_class_count> bonds_per_class{};
+};
+
+/// Assigns the grains (p.grain) and classes the bonds just formed (bonds.bond_class), giving
+/// each non-intra-grain bond its class's stiffness constants (strengths follow in
+/// assign_bond_strengths with class_strength_means). Throws InputError naming the key when the
+/// grains or planes do not fit the packing (column_grains.h, weak_planes.h) or a plane crosses
+/// no bond.
+MicrostructureSummary
+apply_microstructure(ParticleStore& p, BondStore& bonds, const MicrostructureConfig& config,
+                     const std::array<BondClassConfig, bond_class_count>& classes);
+} // namespace dembridge::dem

@@ -1,0 +1,120 @@
+#pragma once
+// A bonded-particle model spread over MPI ranks on deal.II's distributed particle handler
+// (docs/parallel.md). The handler, on a background p4est mesh (background_grid.h), decides which
+// rank owns a particle, migrates particles between ranks and hands each rank its ghosts; this
+// class turns that into what dem/'s explicit solver reads: on each rank one ParticleStore that
+// holds the rank's own particles first, its ghosts after them, and one BondStore with every
+// bond that has an owned end (a bond with a ghost end lives on both ranks, LAMMPS's
+// `newton_bond off`, computed alike on both).
+//
+// Per step only the kinematics of the ghosts change (update_ghosts: positions, velocities,
+// angular velocities and orientations from their owners, through a Utilities::MPI::Partitioner
+// over the particles' slots; nothing else is exchanged). The stores are rebuilt from the
+// handler only when particles may have left their ranks (needs_rebuild: one particle moved half
+// a cell since the last rebuild): the rank writes its particles' state back into the handler's
+// properties, the handler sorts them into their new cells and ranks and exchanges the ghost
+// layer, each bond of a particle that changed ranks is sent to the particle's new owner, and the
+// stores and the partitioner are made anew. Between rebuilds the ghost set is fixed, so a bond
+// computed at one rebuild can be computed until the next whatever its particles do.
+#include "dem/bonds/bond_store.h"
+#include "dem/core/particle_store.h"
+#include "dem/model/model.h"
+#include "distributed/background_grid.h"
+#include <array>
+#include <cstdint>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/partitioner.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/particles/particle_handler.h>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace dembridge::distributed
+{
+/// A particle's support reaction (force, moment) of the last step: state of the explicit
+/// solver that travels with the particle.
+using Reaction = std::array<double, 6>;
+/// The non-zero reactions of a rank's owned particles, by local index (ascending).
+using Reactions = std::vector<std::pair<std::uint32_t, Reaction>>;
+
+class DistributedParticles
+{
+public:
+  /// Every rank passes the same model (its particles' indices are their global ids): the rank
+  /// keeps the particles in its cells and the bonds with an owned end. The mesh is partitioned
+  /// so that the ranks hold about as many particles each (deal.II's cell weights).
+  DistributedParticles(const dem::Model& model, const BackgroundGrid& grid, MPI_Comm comm);
+
+  /// The rank's particles: owned ones in [0, n_owned()), ghosts after them.
+  dem::ParticleStore& particles() { return particles_; }
+  const dem::ParticleStore& particles() const { return particles_; }
+  /// Every bond with an owned end, between local particle indices, in the model's orientation.
+  dem::BondStore& bonds() { return bonds_; }
+  const dem::BondStore& bonds() const { return bonds_; }
+  std::size_t n_owned() const { return n_owned_; }
+  /// Global id (index in the model) of each local particle.
+  const std::vector<std::int64_t>& global_ids() const { return global_id_; }
+  /// The support reactions of the owned particles as the last rebuild brought them.
+  const Reactions& reactions() const { return reactions_; }
+
+  /// Ghosts take their owners' x, v, w and q (collective; no allocation).
+  void update_ghosts();
+  struct MotionCheck
+  {
+    bool rebuild = false;  ///< some particle moved more than half a cell since the last rebuild
+    bool unstable = false; ///< some rank holds a non-finite position or said it was unstable
+  };
+  /// Collective (one reduction of two numbers): how far the particles moved.
+  MotionCheck check_motion(bool local_unstable = false);
+  /// Collective: migrates particles and their bonds to their new ranks and rebuilds the stores
+  /// (see above). @p reactions: the owned particles' support reactions (the solver's state).
+  void rebuild(const Reactions& reactions);
+
+  long n_rebuilds() const { return n_rebuilds_; }
+  /// Particles that arrived from other ranks over all rebuilds (this rank).
+  long n_arrived() const { return n_arrived_; }
+  const BackgroundGrid& grid() const { return grid_; }
+  MPI_Comm communicator() const { return comm_; }
+  /// Doubles sent per update_ghosts from this rank, and the ranks it sends to.
+  std::size_t halo_doubles() const;
+  std::size_t halo_targets() const;
+  /// Bytes this rank holds for its particles: the stores (capacity), the exchange's buffers and
+  /// partitioner, the background mesh (p4est and deal.II's cells), and the handler's particles
+  /// at 72 bytes each (location, reference location, id and the 2 property doubles; the
+  /// handler's own lists aside).
+  std::size_t memory_bytes() const;
+  /// Its parts: the background mesh, and the handler's particles (owned and ghosts).
+  std::size_t mesh_bytes() const { return tria_.memory_consumption(); }
+  std::size_t handler_bytes() const;
+
+private:
+  /// Fills the owned particle with global id `id` at local index i (all but its position: the
+  /// handler's location); returns its support reaction.
+  using FillOwned = std::function<Reaction(std::int64_t id, std::size_t i)>;
+  /// Slots, ghost exchange, stores and partitioner from the handler's owned particles and the
+  /// bond records held; the ghosts' kinematics at the end (collective).
+  void build_local(std::vector<double>& records, const FillOwned& fill);
+
+  MPI_Comm comm_;
+  BackgroundGrid grid_;
+  dealii::parallel::distributed::Triangulation<3> tria_;
+  dealii::MappingCartesian<3> mapping_;
+  dealii::Particles::ParticleHandler<3> handler_;
+  dem::ParticleStore particles_;
+  dem::BondStore bonds_;
+  std::size_t n_owned_ = 0;
+  std::vector<std::int64_t> global_id_;
+  Reactions reactions_;
+  std::int64_t n_global_ = 0;
+  std::int64_t first_slot_ = 0;       ///< slot of the first owned particle
+  std::vector<dem::Vec3> rebuilt_at_; ///< owned positions at the last rebuild
+  double skin_ = 0;                   ///< displacement that triggers a rebuild, m
+  long n_rebuilds_ = 0, n_arrived_ = 0, n_lost_ = 0;
+  // the per-step exchange: 13 doubles a particle at index 13 slot + c
+  std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
+  std::vector<double> ghost_buffer_, send_buffer_;
+  std::vector<MPI_Request> requests_;
+};
+} // namespace dembridge::distributed

@@ -1,0 +1,97 @@
+#pragma once
+// dem/'s explicit solver on a model spread over MPI ranks (distributed_particles.h). Each rank
+// steps one ExplicitSolver over its own particles and ghosts (SolverSettings::owned_particles:
+// it integrates the owned ones, and books a bond held by two ranks on the rank of its end a),
+// refreshes the ghosts after the step, and when particles may have changed ranks rebuilds its
+// stores and a new local solver that continues the old one's running state (time, energy sums,
+// crack log) and support reactions. Groups keep their members on the rank that owns them; a
+// force or moment load shared by a group's members gives each rank its members' share.
+//
+// On record steps the figures of the step are summed over the ranks in rank order (energies,
+// the unbalanced-force ratio's parts; the largest speed is the largest), so that every rank
+// takes the same decisions (stop criteria) and a run's figures do not depend on message timing.
+// Rank 0 keeps the whole model (the setup is replicated: every rank builds the same model and
+// keeps its part) and a second ExplicitSolver over it that is never stepped: gather() puts the
+// particles' state into rank 0's model, and the summed figures and the crack log into that
+// solver, so that a run's observer (history, ParaView files) and measurements read them as on
+// one rank.
+#include "dem/model/model.h"
+#include "dem/solvers/explicit_solver.h"
+#include "distributed/distributed_particles.h"
+#include <memory>
+#include <unordered_map>
+
+namespace dembridge::distributed
+{
+class DistributedSolver
+{
+public:
+  /// Every rank passes the same model and settings; @p grid is the background mesh
+  /// (background_grid_for(model) by default).
+  DistributedSolver(dem::Model& model, const dem::SolverSettings& settings, MPI_Comm comm,
+                    const BackgroundGrid* grid = nullptr);
+
+  /// One step on every rank (collective): the local step, the ghosts' refresh, a migration
+  /// when due (or a throw on every rank when some rank became unstable); on record steps the
+  /// figures summed over the ranks.
+  void step(bool record = false);
+  /// Collective: sums the figures of the last record (and the energy accumulators as they
+  /// stand) over the ranks; step() does this on record steps.
+  void reduce();
+  /// Collective: rank 0's model takes the particles' state (every particle with @p all, else
+  /// those in a group) and with @p all the state of the bonds that are no longer intact; rank
+  /// 0's report solver takes the summed figures and the cracks so far.
+  void gather(bool all);
+
+  double time() const { return local_->time(); }
+  long steps() const { return local_->steps(); }
+  double time_step() const { return local_->time_step(); }
+  /// Summed over the ranks at the last record (reduce).
+  const dem::EnergyBalance& energy() const { return energy_; }
+  double max_speed() const { return max_speed_; }
+  double unbalanced_force_ratio() const { return unbalanced_ratio_; }
+  long n_broken_bonds() const { return n_broken_; }
+  double last_ramp_end() const { return local_->last_ramp_end(); }
+  /// Collective: the group's mean displacement over every rank.
+  dem::Vec3 group_mean_displacement(int group);
+
+  /// Rank 0: the solver over the whole model that reports the gathered state; null elsewhere.
+  dem::ExplicitSolver* report() { return report_.get(); }
+  DistributedParticles& particles() { return particles_; }
+  const dem::ExplicitSolver& local() const { return *local_; }
+  long n_migrations() const { return particles_.n_rebuilds(); }
+  /// Wall seconds this rank spent in each part of its steps so far.
+  struct Timings
+  {
+    double local_step = 0, ghosts = 0, motion_checks = 0, rebuilds = 0, records = 0;
+  };
+  const Timings& timings() const { return timings_; }
+
+private:
+  void build_local_solver(dem::ExplicitSolver::RunningState&& state);
+  void migrate();
+
+  dem::Model& model_;
+  MPI_Comm comm_;
+  bool root_;
+  unsigned n_ranks_;
+  dem::SolverSettings settings_;
+  /// rank 0: built before the particles are spread (it puts the model's bonds in its order)
+  std::unique_ptr<dem::ExplicitSolver> report_;
+  DistributedParticles particles_;
+  std::vector<std::size_t> group_sizes_; ///< members over all ranks
+  std::unique_ptr<dem::ExplicitSolver> local_;
+  dem::EnergyBalance energy_;
+  double max_speed_ = 0, unbalanced_ratio_ = 0;
+  dem::ExplicitSolver::UnbalancedParts unbalanced_;
+  long n_broken_ = 0;
+  std::array<long, 2> broken_by_mode_{};
+  std::size_t cracks_gathered_ = 0; ///< of the local crack log
+  std::vector<double> reduce_buffer_;
+  Timings timings_;
+  /// rank 0: the model's bond index of each pair of global ids, and user id -> global id
+  std::unordered_map<std::uint64_t, std::size_t> bond_index_;
+  std::vector<std::int64_t> global_of_user_;
+};
+
+} // namespace dembridge::distributed

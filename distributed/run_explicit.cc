@@ -1,0 +1,141 @@
+#include "distributed/run_explicit.h"
+#include "distributed/distributed_solver.h"
+#include <chrono>
+#include <cmath>
+#include <type_traits>
+
+namespace dembridge::distributed
+{
+std::string unsupported_on_ranks(const dem::Model& model)
+{
+  if (!model.contributions.empty())
+    return "Contacts/model: contacts and walls do not run on several MPI ranks yet (run on one "
+           "rank)";
+  if (model.groups.size() > 32)
+    return "Groups/names: a run on several MPI ranks takes at most 32 groups";
+  return {};
+}
+
+dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::RunObserver* observer,
+                            dem::RunSchedule sched, MPI_Comm comm)
+{
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  // why: every rank must take the same steps for records, snapshots and reductions
+  static_assert(std::is_trivially_copyable_v<dem::RunSchedule>);
+  MPI_Bcast(&sched, int(sizeof(sched)), MPI_BYTE, 0, comm);
+  if (const std::string why = unsupported_on_ranks(model); !why.empty())
+    throw dem::InputError(why);
+  DistributedSolver solver(
+      model, {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping}, comm);
+  if (!root) // each rank keeps its part; rank 0 keeps the whole model for the outputs
+    model.particles = {}, model.bonds = {};
+  dem::RunResult res;
+  const int deflection_group =
+      c.measure.deflection_group.empty()
+          ? -1
+          : model.group_index(c.measure.deflection_group, "Measurements/deflection group");
+  const int frequency_group =
+      c.measure.frequency_group.empty()
+          ? -1
+          : model.group_index(c.measure.frequency_group, "Measurements/frequency group");
+  const dem::Vec3 dir = c.measure.deflection_direction.normalized();
+  double loads_end = 0;
+  for (const auto& l : model.loads)
+    if (std::isfinite(l.end_time))
+      loads_end = std::max(loads_end, l.end_time);
+  dem::RunProgress progress;
+  if (root && observer)
+    observer->on_start(*solver.report(), progress);
+  std::vector<double>& ft = progress.frequency_time;
+  std::vector<double>& fu = progress.frequency_displacement;
+  const long expected = long(std::min(double(c.run.max_steps), c.run.end_time / model.time_step));
+  if (frequency_group >= 0)
+  {
+    ft.reserve(std::size_t(std::max(0L, expected)) + 2);
+    fu.reserve(ft.capacity());
+  }
+  auto track_energy = [&](const dem::EnergyBalance& e)
+  {
+    progress.largest_seen = std::max(progress.largest_seen, e.largest());
+    if (progress.largest_seen > 0)
+      progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
+  };
+  const long quasi_static_check = std::max<long>(1, std::min<long>(100, sched.record_interval));
+  auto last_progress = start;
+  res.stop_reason = "end time";
+  bool gathered_all = false;
+  while (true)
+  {
+    const long n = solver.steps() + 1;
+    const bool at_end_time = solver.time() + 0.5 * model.time_step >= c.run.end_time;
+    const bool record = (n % sched.record_interval == 0) || n == 1 || at_end_time ||
+                        ((c.run.quasi_static_speed > 0 || c.run.equilibrium_ratio > 0) &&
+                         n % quasi_static_check == 0);
+    solver.step(record);
+    if (frequency_group >= 0 && solver.time() >= loads_end)
+    {
+      ft.push_back(solver.time());
+      fu.push_back(solver.group_mean_displacement(frequency_group).dot(dir));
+    }
+    bool stop = false;
+    if (at_end_time)
+      stop = true;
+    else if (solver.steps() >= c.run.max_steps)
+      stop = true, res.stop_reason = "step limit";
+    else if (record && c.run.quasi_static_speed > 0 && solver.time() > solver.last_ramp_end() &&
+             solver.time() > loads_end && solver.max_speed() < c.run.quasi_static_speed)
+      stop = true, res.stop_reason = "quasi-static";
+    else if (record && c.run.equilibrium_ratio > 0 && solver.time() > solver.last_ramp_end() &&
+             solver.time() > loads_end && solver.unbalanced_force_ratio() < c.run.equilibrium_ratio)
+      stop = true, res.stop_reason = "equilibrium";
+    gathered_all = false;
+    if (record)
+    {
+      track_energy(solver.energy());
+      const bool report = n % sched.record_interval == 0 || n == 1 || stop;
+      const bool snapshot =
+          n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0);
+      if (report || snapshot)
+        solver.gather(snapshot), gathered_all = snapshot;
+      if (root && observer && report)
+        observer->on_record(*solver.report());
+      if (root && observer && snapshot)
+        observer->on_snapshot(*solver.report());
+    }
+    const auto now = clock::now();
+    if (root && observer &&
+        std::chrono::duration<double>(now - last_progress).count() > sched.progress_seconds)
+    {
+      last_progress = now;
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double rate = solver.steps() / wall;
+      const double frac = std::min(1.0, solver.time() / c.run.end_time);
+      observer->on_progress(*solver.report(), frac, rate,
+                            rate > 0 ? (expected - solver.steps()) / rate : 0);
+    }
+    if (stop)
+      break;
+  }
+  // the energy accumulators as they stand (as one rank's solver().energy() at the end), and
+  // the final state on rank 0 for the summary
+  solver.reduce();
+  if (!gathered_all)
+    solver.gather(true);
+  res.steps = solver.steps();
+  res.time = solver.time();
+  res.energy = solver.energy();
+  res.energy_balance_error = progress.worst_error;
+  res.unbalanced_force_ratio = solver.unbalanced_force_ratio();
+  if (deflection_group >= 0)
+  {
+    res.deflection_vector = solver.group_mean_displacement(deflection_group);
+    res.deflection = res.deflection_vector.dot(dir);
+  }
+  if (frequency_group >= 0)
+    res.natural_frequency = dem::oscillation_frequency(ft, fu);
+  res.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  return res;
+}
+} // namespace dembridge::distributed

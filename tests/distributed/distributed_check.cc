@@ -1,0 +1,357 @@
+// Checks of the distributed particle layer (distributed/), run under mpirun on 1, 2 and 3 ranks:
+//   distributed_check flying_cluster
+// A bonded HCP cluster, spinning and vibrating, flies along x across the background mesh: its
+// particles change cells and ranks many times (the check asserts migrations, particles changing
+// ranks and bonds across ranks at several records). Against the same model stepped on one rank by
+// dem/'s ExplicitSolver:
+//  - every bond survives with its state: the bonds booked over the ranks are the model's, all
+//    intact, and their constants as formed;
+//  - at every record (each 200 steps) the energy terms (kinetic, strain, bond dashpots' damping,
+//    initial) agree to 1e-10 of the largest term, and the energy balance error to 1e-12
+//    (absolute, of a relative error);
+//  - every particle's final position agrees to 1e-10 of the distance flown.
+//   distributed_check breaking_bar
+// An HCP bar (r = 2.5 mm) with brittle bonds of scattered strength is pulled apart fast at one
+// end; bonds break along it, some with their ends on two ranks. Against the same model on one
+// rank: the crack log is the same (every crack once: time, particles, mode, to 1e-10 its energy
+// and midpoint), the fracture and other energy terms agree to 1e-10 of the largest term, and on
+// every rank the two copies of a bond held by two ranks agree bit for bit (state, damage,
+// released energy), so a bond that breaks across ranks breaks on both, in the same step.
+// Exit code 0 on success; a failed check prints one line on rank 0 and returns 1.
+#include "dem/bonds/bonding.h"
+#include "dem/model/model.h"
+#include "dem/packing/packings.h"
+#include "dem/solvers/explicit_solver.h"
+#include "dem/solvers/time_step.h"
+#include "distributed/distributed_solver.h"
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deal.II/base/mpi.h>
+#include <iostream>
+#include <map>
+#include <random>
+#include <string>
+
+using namespace dembridge;
+using dem::Vec3;
+
+namespace
+{
+int failures = 0;
+bool root = false;
+
+void check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    ++failures;
+    if (root)
+      std::cout << "FAILED: " << what << std::endl;
+  }
+  else if (root)
+    std::cout << "ok: " << what << std::endl;
+}
+
+std::string figure(double x)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+std::string relative(double a, double b)
+{
+  return figure(std::abs(a - b) / std::max(std::abs(b), 1e-300));
+}
+
+/// A bonded HCP cluster (r = 5 mm) with bond dashpots, flying at 20 m/s along x while it spins
+/// and vibrates (seeded random velocities and angular velocities on top).
+dem::Model flying_cluster()
+{
+  dem::Model m;
+  dem::ParticleSource src;
+  src.kind = dem::ParticleSource::Kind::hcp;
+  src.radius = 5e-3;
+  src.box_size = Vec3(0.05, 0.04, 0.04);
+  dem::generate_particles(src, m.particles);
+  dem::BondMaterial mat;
+  mat.youngs_modulus = 4e9;
+  dem::form_bonds(m.particles, m.bonds, mat, 1.0);
+  dem::assign_bond_damping(m.particles, m.bonds, 0.001);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n01(0, 1);
+  for (std::size_t i = 0; i < m.particles.size(); ++i)
+  {
+    m.particles.velocity[i] = Vec3(20, 0, 0) + 3 * Vec3(n01(rng), n01(rng), n01(rng));
+    m.particles.angular_velocity[i] = Vec3(30, 0, 0) + 300 * Vec3(n01(rng), n01(rng), n01(rng));
+  }
+  m.critical = dem::estimate_critical_time_step(m.particles, m.bonds);
+  m.time_step = 0.5 * m.critical.critical();
+  return m;
+}
+
+int flying_cluster_check(MPI_Comm comm)
+{
+  const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const long steps = 4000, record_every = 200;
+  dem::Model serial = flying_cluster(), model = flying_cluster();
+  // the mesh over the whole flight (20 m/s for 4000 steps, some 0.1 m): cells the cut-off
+  // wide, the cluster crossing a dozen of them
+  const double width = 1.25 * 2 * 5e-3;
+  const distributed::BackgroundGrid grid =
+      distributed::make_background_grid(Vec3(-0.03, -0.03, -0.03), Vec3(0.2, 0.07, 0.07), width);
+  dem::ExplicitSolver one(serial.particles, serial.bonds, {}, {}, {}, {serial.time_step});
+  distributed::DistributedSolver ranks(model, {model.time_step}, comm, &grid);
+  // bonds with a ghost end on this rank
+  auto bonds_across = [&]
+  {
+    const auto& b = ranks.particles().bonds();
+    const std::size_t owned = ranks.particles().n_owned();
+    long n = 0;
+    for (std::size_t k = 0; k < b.size(); ++k)
+      n += std::size_t(b.a[k]) >= owned || std::size_t(b.b[k]) >= owned;
+    return dealii::Utilities::MPI::sum(n, comm) / 2;
+  };
+  long booked_at_start = 0;
+  for (std::size_t k = 0; k < ranks.particles().bonds().size(); ++k)
+    booked_at_start += std::size_t(ranks.particles().bonds().a[k]) < ranks.particles().n_owned();
+  booked_at_start = dealii::Utilities::MPI::sum(booked_at_start, comm);
+  const long across = bonds_across();
+  // in step, recording every 200 steps: the energy terms against one rank's at each record
+  double worst_energy = 0, worst_balance = 0;
+  long split_records = 0;
+  for (long n = 1; n <= steps; ++n)
+  {
+    const bool record = n % record_every == 0;
+    one.step(record);
+    ranks.step(record);
+    if (!record)
+      continue;
+    const auto& e = ranks.energy();
+    const auto& s = one.energy();
+    for (const auto& [a, b] : {std::pair(e.kinetic, s.kinetic), std::pair(e.strain, s.strain),
+                               std::pair(e.damping, s.damping), std::pair(e.initial, s.initial)})
+      worst_energy = std::max(worst_energy, std::abs(a - b) / s.largest());
+    worst_balance = std::max(worst_balance, std::abs(e.relative_error() - s.relative_error()));
+    split_records += bonds_across() > 0;
+  }
+  const double flown =
+      (serial.particles.position[0] - serial.particles.reference_position[0]).norm();
+  ranks.gather(true);
+
+  const auto& p = ranks.particles();
+  long booked = 0, intact = 0;
+  double constants = 0; // rest lengths of the bonds booked here, against the model's
+  for (std::size_t k = 0; k < p.bonds().size(); ++k)
+    if (std::size_t(p.bonds().a[k]) < p.n_owned())
+    {
+      ++booked;
+      intact += p.bonds().state[k] == dem::BondState::intact;
+      constants += p.bonds().rest_length[k];
+    }
+  booked = dealii::Utilities::MPI::sum(booked, comm);
+  intact = dealii::Utilities::MPI::sum(intact, comm);
+  constants = dealii::Utilities::MPI::sum(constants, comm);
+  double model_constants = 0;
+  for (const double l : serial.bonds.rest_length)
+    model_constants += l;
+  const long migrations = ranks.n_migrations();
+  const long arrived = dealii::Utilities::MPI::sum(p.n_arrived(), comm);
+  if (root)
+    std::cout << n_ranks << " ranks: " << serial.particles.size() << " particles, "
+              << serial.bonds.size() << " bonds, flown " << flown << " m, " << migrations
+              << " migrations, " << across << " bonds across ranks at the start, " << arrived
+              << " particles changed ranks" << std::endl;
+  check(booked_at_start == long(serial.bonds.size()) && booked == long(serial.bonds.size()),
+        "bonds booked over the ranks: " + std::to_string(booked_at_start) + " at the start, " +
+            std::to_string(booked) + " at the end, model " + std::to_string(serial.bonds.size()));
+  check(intact == booked, "every bond intact");
+  check(std::abs(constants - model_constants) <= 1e-12 * model_constants,
+        "the bonds' rest lengths as formed (sum, relative " + relative(constants, model_constants) +
+            ")");
+  check(migrations >= 3, "migrations while flying: " + std::to_string(migrations));
+  if (n_ranks > 1)
+    check(across > 0 && arrived > 0, "bonds across ranks, particles changing ranks");
+
+  // each term to 1e-10 of the largest (the flight's kinetic energy), at every record
+  const auto& s = one.energy();
+  check(worst_energy <= 1e-10, "energy terms (kinetic, strain, damping, initial) as on one "
+                               "rank at every record: largest difference " +
+                                   figure(worst_energy) + " of the largest term");
+  if (n_ranks > 1)
+    check(split_records >= 5, "records with bonds across ranks: " + std::to_string(split_records) +
+                                  " of " + std::to_string(steps / record_every));
+  // a bond lost or counted twice would change the strain energy by some 1e-2 of itself
+  check(s.strain > 1e-6 * s.largest() && s.damping > 1e-6 * s.largest(),
+        "strain energy " + figure(s.strain / s.largest()) + ", damping " +
+            figure(s.damping / s.largest()) + " of the largest term: the check sees a bond");
+  check(worst_balance <= 1e-12,
+        "energy balance error as on one rank at every record (largest difference " +
+            figure(worst_balance) + "; at the end " + figure(s.relative_error()) + ")");
+  if (root)
+  {
+    double worst = 0;
+    for (std::size_t i = 0; i < serial.particles.size(); ++i)
+      worst = std::max(worst, (model.particles.position[i] - serial.particles.position[i]).norm());
+    check(worst <= 1e-10 * flown, "positions as on one rank (largest difference " +
+                                      figure(worst / flown) + " of the flight)");
+  }
+  return dealii::Utilities::MPI::max(failures, comm) > 0 ? 1 : 0;
+}
+
+/// The pulled bar: 0.08 x 0.015 x 0.015 m of HCP spheres, parallel bonds (E_b = 4 GPa) of
+/// normal scatter 0.3 around 1 MPa tensile and 2 MPa shear strength, bond dashpots (xi = 0.05);
+/// the x- face held in x, the x+ face pulled at 0.5 m/s after a 0.1 ms ramp.
+dem::Model breaking_bar()
+{
+  dem::CaseConfig c;
+  c.particles.kind = dem::ParticleSource::Kind::hcp;
+  c.particles.radius = 2.5e-3;
+  c.particles.box_size = Vec3(0.08, 0.015, 0.015);
+  c.bonds.material.model = dem::BondModel::parallel_bond;
+  c.bonds.material.youngs_modulus = 4e9;
+  c.bonds.material.stiffness_ratio = 4.2;
+  c.damage.law.mode = dem::FailureMode::brittle;
+  c.damage.tensile_strength = 1e6;
+  c.damage.shear_strength = 2e6;
+  c.damage.scatter = dem::StrengthScatter::normal;
+  c.damage.scatter_deviation = 0.3;
+  c.run.bond_damping_ratio = 0.05;
+  c.run.bond_force_records = false;
+  dem::GroupConfig fixed, pulled;
+  fixed.name = "fixed", pulled.name = "pulled";
+  fixed.selection.kind = pulled.selection.kind = dem::GroupSelection::Kind::face;
+  fixed.selection.face_axis = pulled.selection.face_axis = 0;
+  pulled.selection.face_upper = true;
+  fixed.fixed = dem::dof_ux;
+  c.groups = {fixed, pulled};
+  dem::LoadConfig pull;
+  pull.group = "pulled";
+  pull.load.name = "pull";
+  pull.load.kind = dem::LoadKind::velocity;
+  pull.load.value = Vec3(0.5, 0, 0);
+  pull.load.components = 1;
+  pull.load.ramp_time = 1e-4;
+  c.loads = {pull};
+  return dem::build_model(c);
+}
+
+int breaking_bar_check(MPI_Comm comm)
+{
+  const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const long steps = 3000, record_every = 100;
+  dem::Model serial = breaking_bar(), model = breaking_bar();
+  dem::ExplicitSolver one(serial.particles, serial.bonds, serial.groups, serial.constraints,
+                          serial.loads, {serial.time_step});
+  distributed::DistributedSolver ranks(model, {model.time_step}, comm);
+  double worst_energy = 0;
+  for (long n = 1; n <= steps; ++n)
+  {
+    const bool record = n % record_every == 0;
+    one.step(record);
+    ranks.step(record);
+    if (!record)
+      continue;
+    const auto &e = ranks.energy(), &s = one.energy();
+    for (const auto& [a, b] : {std::pair(e.kinetic, s.kinetic), std::pair(e.strain, s.strain),
+                               std::pair(e.damping, s.damping), std::pair(e.external, s.external),
+                               std::pair(e.fracture, s.fracture)})
+      worst_energy = std::max(worst_energy, std::abs(a - b) / s.largest());
+  }
+  ranks.gather(true);
+
+  // every copy of every bond, gathered on rank 0: ids, state, damage, released energy
+  const auto& p = ranks.particles();
+  std::vector<double> mine;
+  for (std::size_t k = 0; k < p.bonds().size(); ++k)
+    mine.insert(mine.end(),
+                {double(p.global_ids()[std::size_t(p.bonds().a[k])]),
+                 double(p.global_ids()[std::size_t(p.bonds().b[k])]), double(p.bonds().state[k]),
+                 p.bonds().damage[k], p.bonds().dissipated[k]});
+  std::vector<double> owners;
+  for (std::size_t i = 0; i < p.n_owned(); ++i)
+    owners.push_back(double(p.global_ids()[i]));
+  const auto copies = dealii::Utilities::MPI::gather(comm, mine, 0);
+  const auto owned = dealii::Utilities::MPI::gather(comm, owners, 0);
+  const long cracks = ranks.n_broken_bonds();
+  if (root)
+  {
+    std::map<std::pair<long, long>, std::vector<const double*>> by_pair;
+    for (const auto& rank : copies)
+      for (std::size_t at = 0; at < rank.size(); at += 5)
+        by_pair[{long(rank[at]), long(rank[at + 1])}].push_back(&rank[at]);
+    long twice = 0, disagree = 0, broken_twice = 0;
+    for (const auto& [pair, list] : by_pair)
+    {
+      twice += list.size() == 2;
+      broken_twice += list.size() == 2 && list[0][2] == double(dem::BondState::broken);
+      for (const double* copy : list)
+        disagree += std::memcmp(copy, list[0], 5 * sizeof(double)) != 0;
+    }
+    std::vector<int> owner(serial.particles.size(), -1);
+    for (std::size_t r = 0; r < owned.size(); ++r)
+      for (const double id : owned[r])
+        owner[std::size_t(id)] = int(r);
+    std::vector<long> global_of_user(serial.particles.size());
+    for (std::size_t i = 0; i < serial.particles.size(); ++i)
+      global_of_user[std::size_t(model.particles.id[i])] = long(i);
+    const auto& mine_log = ranks.report()->cracks();
+    const auto& one_log = one.cracks();
+    long across = 0, same = 0;
+    for (std::size_t c = 0; c < std::min(mine_log.size(), one_log.size()); ++c)
+    {
+      const auto &x = mine_log[c], &y = one_log[c];
+      same += x.time == y.time && x.a == y.a && x.b == y.b && x.mode == y.mode &&
+              std::abs(x.energy - y.energy) <= 1e-10 * std::abs(y.energy) &&
+              (x.midpoint - y.midpoint).norm() <= 1e-10 * 0.08;
+      across += owner[std::size_t(global_of_user[std::size_t(x.a)])] !=
+                owner[std::size_t(global_of_user[std::size_t(x.b)])];
+    }
+    std::cout << n_ranks << " ranks: " << serial.particles.size() << " particles, "
+              << serial.bonds.size() << " bonds, " << one_log.size() << " cracks on one rank, "
+              << cracks << " here, " << across << " of them between particles of two ranks; "
+              << twice << " bonds held by two ranks, " << broken_twice << " of them broken"
+              << std::endl;
+    check(one_log.size() >= 20, "the bar cracks: " + std::to_string(one_log.size()) + " bonds");
+    check(long(mine_log.size()) == cracks && cracks == long(one_log.size()) &&
+              same == long(one_log.size()),
+          "the crack log as on one rank, every crack once (" + std::to_string(same) + " of " +
+              std::to_string(one_log.size()) + " equal)");
+    check(disagree == 0, "the copies of the bonds held by two ranks agree bit for bit (" +
+                             std::to_string(disagree) + " differ)");
+    if (n_ranks > 1)
+      check(across > 0 && broken_twice > 0, "bonds broken across ranks");
+  }
+  check(worst_energy <= 1e-10, "energy terms (kinetic, strain, damping, external, fracture) as "
+                               "on one rank at every record: largest difference " +
+                                   figure(worst_energy) + " of the largest term");
+  check(one.energy().fracture > 1e-3 * one.energy().largest(),
+        "fracture energy " + figure(one.energy().fracture / one.energy().largest()) +
+            " of the largest term");
+  return dealii::Utilities::MPI::max(failures, comm) > 0 ? 1 : 0;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const std::string name = argc > 1 ? argv[1] : "";
+  try
+  {
+    if (name == "flying_cluster")
+      return flying_cluster_check(MPI_COMM_WORLD);
+    if (name == "breaking_bar")
+      return breaking_bar_check(MPI_COMM_WORLD);
+    if (root)
+      std::cerr << "usage: distributed_check flying_cluster | breaking_bar" << std::endl;
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "distributed_check: " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  return 1;
+}
