@@ -77,6 +77,37 @@ void declare_coupling_parameters(ParameterHandler& prm)
                     "Stop once at rest after the last ramp: the kinetic share of both sides "
                     "K / (K + U) below this at five consecutive records; 0: run to the end "
                     "time.");
+  prm.enter_subsection("Adaptive region");
+  prm.declare_entry("enabled", "false", Bool(),
+                    "Grow the particle region while the run goes: FE cells whose averaged "
+                    "utilisation (the continuum's stress against the bonds' strengths, "
+                    "docs/adaptive.md) passes the threshold turn into bonded particles, by whole "
+                    "layers of cells. The particle box (Particles/origin, box size) is the region "
+                    "at the start; one MPI process; lattice packings.");
+  prm.declare_entry("threshold", "0.7", Double(),
+                    "Utilisation in (0, 1] at which a cell turns into particles (1: at the "
+                    "bonds' mean strength).");
+  prm.declare_entry("band threshold", "0.8", Double(),
+                    "Failure index in (0, 1] of a band bond (its whole force against its own "
+                    "strength) at which its cell turns into particles: where damage nears the "
+                    "band, which is held elastic.");
+  prm.declare_entry("averaging radius", "0", Double(),
+                    "Radius of the non-local average of the utilisation (m); 0: the band width.");
+  prm.declare_entry("maximum particles", "0", Integer(0),
+                    "The region grows no further once it would hold more particles (the run "
+                    "says so and goes on); 0: no cap.");
+  prm.declare_entry("layers ahead", "2", Integer(0),
+                    "Whole layers of cells added beyond the least that puts a marked cell "
+                    "deeper than the band (fewer, larger growths).");
+  prm.declare_entry("crack check interval", "10", Integer(0),
+                    "While bonds break, growth is checked every this many steps instead of at "
+                    "every record (Output/history interval); 0: at every record only.");
+  prm.declare_entry("envelope lower", "", dealii::Patterns::Anything(),
+                    "Lower corner x, y, z of the box the region may grow in (m); empty: the FE "
+                    "domain. Its cells have the band element size.");
+  prm.declare_entry("envelope upper", "", dealii::Patterns::Anything(),
+                    "Upper corner x, y, z of that box (m); empty: the FE domain.");
+  prm.leave_subsection();
   prm.enter_subsection("Pulse");
   prm.declare_entry("enabled", "false", Bool(),
                     "Start from a longitudinal pulse A exp(-(s/(e lambda))^2) cos(2 pi s / "
@@ -146,6 +177,53 @@ coupling::CoupledCase parse_coupled_case(ParameterHandler& prm)
     throw dem::InputError("Coupling/fine scale damping: acts with node tying only (tying = node)");
   c.ramp_time = prm.get_double("ramp time");
   c.smooth_ramp = prm.get("ramp profile") == "smooth";
+  prm.enter_subsection("Adaptive region");
+  {
+    auto& a = s.adaptive;
+    a.enabled = prm.get_bool("enabled");
+    a.threshold = prm.get_double("threshold");
+    a.band_threshold = prm.get_double("band threshold");
+    a.averaging_radius = prm.get_double("averaging radius");
+    a.maximum_particles = std::size_t(prm.get_integer("maximum particles"));
+    a.layers_ahead = prm.get_integer("layers ahead");
+    a.crack_check_interval = prm.get_integer("crack check interval");
+    const std::string lo = prm.get("envelope lower"), hi = prm.get("envelope upper");
+    if (lo.empty() != hi.empty())
+      throw dem::InputError("Coupling/Adaptive region/envelope " +
+                            std::string(lo.empty() ? "lower" : "upper") +
+                            ": give both corners of the envelope, or neither");
+    a.envelope_given = !lo.empty();
+    auto corner = [](const std::string& text, const std::string& key)
+    {
+      const auto v = dealii::Utilities::split_string_list(text);
+      if (v.size() != 3)
+        throw dem::InputError("Coupling/Adaptive region/" + key + ": expected x, y, z");
+      return dem::Vec3(dealii::Utilities::string_to_double(v[0]),
+                       dealii::Utilities::string_to_double(v[1]),
+                       dealii::Utilities::string_to_double(v[2]));
+    };
+    if (a.envelope_given)
+    {
+      a.envelope_lo = corner(lo, "envelope lower");
+      a.envelope_hi = corner(hi, "envelope upper");
+    }
+    if (a.enabled && !(a.threshold > 0 && a.threshold <= 1))
+    {
+      std::ostringstream m;
+      m << "Coupling/Adaptive region/threshold: " << a.threshold
+        << " lies outside (0, 1] (the share of the bonds' strength at which the continuum turns "
+           "into particles)";
+      throw dem::InputError(m.str());
+    }
+    if (a.enabled && !(a.band_threshold > 0 && a.band_threshold <= 1))
+    {
+      std::ostringstream m;
+      m << "Coupling/Adaptive region/band threshold: " << a.band_threshold
+        << " lies outside (0, 1]";
+      throw dem::InputError(m.str());
+    }
+  }
+  prm.leave_subsection();
   prm.enter_subsection("Pulse");
   c.pulse.enabled = prm.get_bool("enabled");
   c.pulse.axis = int(std::string("xyz").find(prm.get("axis")));

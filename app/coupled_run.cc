@@ -67,7 +67,7 @@ class CoupledObserver : public coupling::CoupledRunObserver
 {
 public:
   CoupledObserver(const std::filesystem::path& dir, const OutputSettings& out,
-                  CoupledProblem& problem, const std::vector<fem::PointProbe>& probes, bool root,
+                  CoupledProblem& problem, std::vector<fem::PointProbe>& probes, bool root,
                   const CheckpointSettings& checkpoint, bool failure_law)
       : dir_(dir), write_vtu_(out.write_vtu), probes_(probes), root_(root), vtu_(dir),
         cracks_(dir, out.write_vtu, failure_law), checkpoint_(checkpoint)
@@ -110,6 +110,8 @@ public:
     for (std::size_t k = 0; k < probes_.size(); ++k)
       for (const char* q : {"ux", "uy", "uz"})
         history_ << ",fe_probe" << k << '_' << q;
+    if (problem.adaptive_region()) // the region as it stands; a growth's jump on the next row
+      history_ << ",region_cells,n_particles,n_bonds,region_growth_events,growth_energy_jump";
     history_ << '\n' << std::setprecision(10);
   }
 
@@ -211,7 +213,24 @@ public:
     }
     for (const auto& v : u)
       history_ << ',' << v[0] << ',' << v[1] << ',' << v[2];
+    if (const auto* a = problem.adaptive_region())
+    {
+      const auto& events = problem.growth_events();
+      double jump = 0; // of the growths since the last row
+      for (std::size_t k = events_written_; k < events.size(); ++k)
+        jump += events[k].energy_jump();
+      events_written_ = events.size();
+      history_ << ',' << a->n_region_cells() << ',' << model.particles.size() << ','
+               << model.bonds.size() << ',' << events.size() << ',' << jump;
+    }
     history_ << '\n';
+  }
+
+  /// The continuum is a new mesh after a growth: its probes are made anew (collective).
+  void on_region_growth(CoupledProblem& problem, const coupling::GrowthEvent&) override
+  {
+    for (auto& probe : probes_)
+      probe = problem.continuum().make_probe(probe.point, "FEM/Measurements/deflection points");
   }
 
   void on_snapshot(CoupledProblem& problem) override
@@ -293,12 +312,17 @@ private:
                    coupling::CoupledRunProgress& progress)
   {
     problem.visit_state(a);
+    if (a.loading() && problem.adaptive_region()) // the continuum may be the grown region's
+      for (auto& probe : probes_)
+        probe = problem.continuum().make_probe(probe.point, "FEM/Measurements/deflection points");
     progress.visit_state(a);
     dem::StateGroup group(a, "output");
     a.io("load", load_);
     a.io("load_displacement", load_displacement_);
     if (a.loading() && load_.size() != load_displacement_.size())
       throw dem::InputError(a.where() + "load: not as long as 'load_displacement'");
+    if (problem.adaptive_region()) // the growths whose jumps history.csv holds
+      a.io("growth_events_written", events_written_);
     long history_bytes = a.loading() ? 0 : long(history_file_.durable_size());
     a.io("history_bytes", history_bytes);
     vtu_.visit_state(a);
@@ -320,13 +344,14 @@ private:
 
   std::filesystem::path dir_;
   bool write_vtu_;
-  const std::vector<fem::PointProbe>& probes_;
+  std::vector<fem::PointProbe>& probes_;
   bool root_;
   ParticleVtuSeries vtu_;
   CrackOutput cracks_;
   dem::HistoryFile history_file_;
   std::ostream& history_ = history_file_.stream();
   unsigned int cycle_ = 0;
+  std::size_t events_written_ = 0; ///< growth events accounted for in history.csv
   long first_step_ = 0; ///< the step this process started at (a resumed run's checkpoint's)
   std::vector<std::pair<double, std::string>> fe_files_;
   int load_group_ = -1;
@@ -337,6 +362,44 @@ private:
   std::vector<double> load_, load_displacement_;
   CheckpointSettings checkpoint_;
 };
+
+/// The adaptive region's growth (summary.json): the events, the largest energy jump relative to
+/// the body's strain energy, the cap.
+void add_growth_summary(nlohmann::json& j, const CoupledProblem& p)
+{
+  const auto& a = *p.adaptive_region();
+  nlohmann::json events = nlohmann::json::array();
+  double largest = 0;
+  for (const auto& e : p.growth_events())
+  {
+    events.push_back({{"time", e.time},
+                      {"step", e.step},
+                      {"marked_cells", e.marked_cells},
+                      {"marked_by_band_bonds", e.marked_by_bonds},
+                      {"max_utilisation", e.max_utilisation},
+                      {"cells_added", e.cells_added},
+                      {"region_cells", e.region_cells},
+                      {"particles_added", e.particles_added},
+                      {"n_particles", e.n_particles},
+                      {"bonds_added", e.bonds_added},
+                      {"energy_jump", e.energy_jump()},
+                      {"energy_jump_ratio", e.energy_jump_ratio()},
+                      {"strain_energy", e.strain_energy},
+                      {"time_step", e.time_step}});
+    largest = std::max(largest, e.energy_jump_ratio());
+  }
+  j["region_growth_events"] = events;
+  j["n_region_growth_events"] = events.size();
+  j["n_particles_final"] = p.n_particles();
+  j["growth_energy_jump_max"] = largest;
+  j["region_cells_final"] = a.n_region_cells();
+  j["particle_region_packing_fraction"] =
+      double(a.n_region_particles()) / double(std::max<std::size_t>(1, a.packing().size()));
+  j["max_utilisation"] = a.largest_utilisation();
+  j["region_growth_capped"] = p.growth_cap().reached;
+  if (p.growth_cap().reached)
+    j["region_growth_capped_time"] = p.growth_cap().time;
+}
 
 nlohmann::json energies_json(const CoupledProblem::Energies& e)
 {
@@ -445,8 +508,9 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
                   "(small displacements)";
   j["n_particles"] = p.n_particles();
   j["n_interface_particles"] = p.n_interface_particles();
-  j["n_fe_dofs"] = fe.n_dofs();
-  j["n_fe_cells"] = fe.n_cells();
+  // the continuum now: an adaptive region's growth replaces it
+  j["n_fe_dofs"] = p.continuum().n_dofs();
+  j["n_fe_cells"] = p.continuum().n_cells();
   j["time_step"] = p.time_step();
   j["particle_time_step"] = p.particle_time_step();
   j["fe_time_step"] = p.fe_time_step();
@@ -475,6 +539,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     if (bd.reached)
       j["damage_reached_band_time"] = bd.first_time;
   }
+  if (p.adaptive_region())
+    add_growth_summary(j, p);
   j["band_width"] = c.settings.geometry.band_width;
   j["weight_floor"] = c.settings.geometry.weight_floor;
   {
@@ -588,8 +654,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
                         m.stress_layer_axis);
     if (!observer.loads().empty()) // peak_load (N), deflection_at_peak (m)
       add_peak_load(measured, observer.loads(), observer.load_displacements());
-    const auto& de = p.particle_solver()->energy();
-    measured["fracture_energy"] = de.fracture;
+    measured["fracture_energy"] = p.fracture_energy();
     groups_text = measured.dump();
   }
   groups_text = dealii::Utilities::MPI::broadcast(comm, groups_text, 0);

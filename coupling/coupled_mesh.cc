@@ -11,18 +11,15 @@ namespace dembridge::coupling
 {
 using namespace dealii;
 
-std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const Vec3& element_size,
-                                                      const double band_element_size,
-                                                      const Vec3& far_element_size,
-                                                      const double growth)
+GridLines coupled_mesh_steps(const HandshakeGeometry& g, const GridLines& planes,
+                             const Vec3& element_size, const double band_element_size,
+                             const Vec3& far_element_size, const double growth)
 {
   if (!(element_size.minCoeff() > 0) || !(band_element_size > 0))
     throw std::runtime_error("Coupling/element size: must be positive");
-  const auto& g = h.geometry();
-  const auto planes = h.band_planes();
   const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
   // Per axis: break points (domain ends and band planes), then equal cells in each interval.
-  std::array<std::vector<double>, 3> steps;
+  GridLines steps;
   for (int d = 0; d < 3; ++d)
   {
     std::vector<double> points = {g.domain_lo[d], g.domain_hi[d]};
@@ -80,20 +77,32 @@ std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const 
   return steps;
 }
 
-fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
-                                     const double band_element_size,
-                                     parallel::distributed::Triangulation<3>& tria,
-                                     std::vector<RemovedShare>* removed,
-                                     const Vec3& far_element_size, const double growth)
+GridLines grid_lines(const Vec3& lo, const GridLines& steps)
+{
+  GridLines lines;
+  for (int d = 0; d < 3; ++d)
+  {
+    lines[d] = {lo[d]};
+    for (const double step : steps[d])
+      lines[d].push_back(lines[d].back() + step);
+  }
+  return lines;
+}
+
+fem::BoundaryNames
+make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double band_element_size,
+                  parallel::distributed::Triangulation<3>& tria, std::vector<RemovedShare>* removed,
+                  const Vec3& far_element_size, const double growth, const GridLines* fine_planes)
 {
   const auto& g = h.geometry();
   const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
-  const auto steps_array =
-      coupled_mesh_steps(h, element_size, band_element_size, far_element_size, growth);
-  const std::vector<std::vector<double>> steps(steps_array.begin(), steps_array.end());
+  const GridLines steps =
+      coupled_mesh_steps(g, fine_planes ? *fine_planes : h.band_planes(), element_size,
+                         band_element_size, far_element_size, growth);
   Triangulation<3> box;
   GridGenerator::subdivided_hyper_rectangle(
-      box, steps, Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
+      box, std::vector<std::vector<double>>(steps.begin(), steps.end()),
+      Point<3>(g.domain_lo[0], g.domain_lo[1], g.domain_lo[2]),
       Point<3>(g.domain_hi[0], g.domain_hi[1], g.domain_hi[2]));
   std::set<Triangulation<3>::active_cell_iterator> remove;
   // A cell goes when its centre and its eight Gauss points lie in the particle-only region, where

@@ -26,16 +26,25 @@ struct RemovedShare
   double volume = 0; ///< m^3, sum over the removed cells at the vertex of V_cell / 8
 };
 
-/// The cell sizes along each axis (the mesh above before its particle-only cells are cut out):
-/// its cells are the products of the three lists.
-std::array<std::vector<double>, 3> coupled_mesh_steps(const Handshake& h, const Vec3& element_size,
-                                                      double band_element_size,
-                                                      const Vec3& far_element_size, double growth);
+/// Per axis: values along it (cell sizes, cell faces, or pairs of planes).
+using GridLines = std::array<std::vector<double>, 3>;
 
+/// The box grid's cell sizes per axis: cells of the band element size between each pair of
+/// @p planes, of the element size (growing up to the far size) elsewhere.
+GridLines coupled_mesh_steps(const HandshakeGeometry& g, const GridLines& planes,
+                             const Vec3& element_size, double band_element_size,
+                             const Vec3& far_element_size, double growth);
+/// The cell faces of a box grid with lower corner @p lo and cell sizes @p steps (ascending; the
+/// same sums deal.II's subdivided_hyper_rectangle makes).
+GridLines grid_lines(const Vec3& lo, const GridLines& steps);
+
+/// @p fine_planes: pairs of planes per axis between which the cells have the band element size
+/// (an adaptive region's envelope, adaptive_region.h); nullptr: the band's (Handshake::
+/// band_planes).
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      double band_element_size,
                                      dealii::parallel::distributed::Triangulation<3>& tria,
                                      std::vector<RemovedShare>* removed = nullptr,
                                      const Vec3& far_element_size = Vec3::Zero(),
-                                     double growth = 1.2);
+                                     double growth = 1.2, const GridLines* fine_planes = nullptr);
 } // namespace dembridge::coupling

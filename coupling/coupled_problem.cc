@@ -111,7 +111,6 @@ double CoupledProblem::Energies::balance_error() const
 // Setup: both models, blended.
 void CoupledProblem::setup()
 {
-  handshake_ = std::make_unique<Handshake>(settings_.geometry);
   check_positive_definite(settings_.tensor, "Coupling/continuum tensor");
   if (dem_case_.run.particle_damping != 0)
     throw std::runtime_error("Damping/particle damping: not available in a coupled run (its "
@@ -121,7 +120,15 @@ void CoupledProblem::setup()
                              "damping (it damps both sides alike)");
   if (dem_case_.run.static_solver)
     throw std::runtime_error("Simulation/solver: a coupled run is explicit");
+  if (settings_.adaptive.enabled)
+    prepare_adaptive_region();
+  tie_ = std::make_unique<Tie>(*this);
+  build(nullptr);
+}
 
+void CoupledProblem::build(const std::function<void()>& adopt)
+{
+  handshake_ = std::make_unique<Handshake>(settings_.geometry);
   // The continuum: the lattice's tensor, (1 - alpha)-weighted stiffness, w_M-weighted density.
   fe_prm_.material = fem::MaterialModel::anisotropic;
   fe_prm_.voigt_stiffness = settings_.tensor;
@@ -138,10 +145,18 @@ void CoupledProblem::setup()
       {
         return make_coupled_mesh(*handshake_, settings_.element_size, settings_.band_element_size,
                                  tria, &removed, settings_.far_element_size,
-                                 settings_.element_growth);
+                                 settings_.element_growth, adaptive_ ? &fine_planes_ : nullptr);
       });
   fe_->set_half_step_start(false); // the initial velocity is v^{-1/2}, as for the particles
   fe_->set_mass_damping(settings_.mass_damping);
+  if (adaptive_)
+  {
+    const AdaptiveRegion& a = *adaptive_;
+    fe_->add_cell_output("particle_region", [&h](const Point<3>& x)
+                         { return h.in_particle_box(to_vec(x)) ? 1.0 : 0.0; });
+    fe_->add_cell_output("utilisation",
+                         [&a](const Point<3>& x) { return a.averaged_utilisation(to_vec(x)); });
+  }
   fe_->setup();
   for (const auto& d : settings_.driven)
   {
@@ -157,6 +172,28 @@ void CoupledProblem::setup()
           {
             model_ = dem::build_model(dem_case_);
             dt_particles_ = model_.critical.critical(); // the particle region's own
+            if (adaptive_) // each particle's place in the envelope's packing
+            {
+              packing_of_.resize(model_.particles.size());
+              for (std::size_t i = 0; i < model_.particles.size(); ++i)
+              {
+                packing_of_[i] = adaptive_->packing_index(model_.particles.reference_position[i]);
+                if (packing_of_[i] < 0)
+                  throw std::logic_error("adaptive region: a particle is not the packing's");
+              }
+            }
+            if (adaptive_ && !adaptive_->has_families()) // the packing's bonds, unweighted
+            {
+              const auto& b = model_.bonds;
+              std::vector<double> ra, rb;
+              for (std::size_t k = 0; k < b.size(); ++k)
+                ra.push_back(model_.particles.radius[b.a[k]]),
+                    rb.push_back(model_.particles.radius[b.b[k]]);
+              adaptive_->set_families(
+                  bond_families(b.rest_axis, b.rest_length, ra, rb, dem_case_.bonds.material));
+            }
+            if (adopt)
+              adopt();
             interface_ = find_interface_particles(h, model_.particles);
             std::vector<char> tied(model_.particles.size(), 0);
             for (const int i : interface_)
@@ -205,6 +242,8 @@ void CoupledProblem::setup()
               blending_ = blend_particles(h, interface_, w, model_.particles, model_.bonds);
               auto& b = model_.bonds;
               band_damage_.n_band_bonds = blending_.band_bonds.size();
+              band_tensile_.clear();
+              band_shear_.clear();
               if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
                 for (const std::size_t k : blending_.band_bonds)
                 {
@@ -218,7 +257,6 @@ void CoupledProblem::setup()
   assemble_constraints();
   compute_time_step();
 
-  tie_ = std::make_unique<Tie>(*this);
   if (root_)
   {
     dem::SolverSettings s;
@@ -475,6 +513,8 @@ void CoupledProblem::check_band_damage()
   std::vector<double> found(5, 0.0); // max kappa, reached, time, position
   if (root_ && !band_tensile_.empty())
   {
+    if (adaptive_)
+      band_kappa_.assign(blending_.band_bonds.size(), 0.0);
     const auto& b = model_.bonds;
     const auto& p = model_.particles;
     const auto& law = b.failure;
@@ -490,6 +530,8 @@ void CoupledProblem::check_band_damage()
       const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
       const double tau_max = dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
       const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
+      if (adaptive_)
+        band_kappa_[n] = kappa;
       largest = std::max(largest, kappa);
       if (kappa >= 1 && !band_damage_.reached && found[1] == 0)
       {
@@ -528,9 +570,9 @@ void CoupledProblem::refresh_energies(const bool)
     const auto& e = solver_->energy();
     dem = {e.kinetic,
            e.strain,
-           e.damping + damping_particles_ - lead_damping_,
-           e.external,
-           e.contact_strain + e.friction + e.contact_damping + e.fracture,
+           e.damping + damping_particles_ - lead_damping_ + carried_.dem_damping,
+           e.external + carried_.dem_external,
+           e.contact_strain + e.friction + e.contact_damping + e.fracture + carried_.dem_other,
            e.initial,
            work_q_particles_ - lead_q_,
            0.0};
@@ -546,9 +588,9 @@ void CoupledProblem::refresh_energies(const bool)
   energy_.multiplier_work_particles = dem[6];
   energy_.fe_kinetic = f.kinetic_shadow;
   energy_.fe_strain = f.strain + f.load_potential;
-  energy_.fe_damping = f.damping;
-  energy_.fe_boundary_work = f.boundary_work;
-  energy_.multiplier_work_fe = f.outside_work;
+  energy_.fe_damping = f.damping + carried_.fe_damping;
+  energy_.fe_boundary_work = f.boundary_work + carried_.fe_boundary_work;
+  energy_.multiplier_work_fe = f.outside_work + carried_.multiplier_work_fe;
   if (steps_ == 1) // step 0 just completed: the state at t_0
     energy_.initial = dem[5] + f.shadow_total();
 }

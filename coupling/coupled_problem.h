@@ -42,6 +42,7 @@
 //
 // MPI: the continuum is distributed (p4est + PETSc); the particles live on rank 0, whose DEM
 // solver drives the step, while the other ranks run the same FE phases and collectives.
+#include "coupling/adaptive_region.h"
 #include "coupling/blending.h"
 #include "coupling/continuum_tensor.h"
 #include "coupling/handshake.h"
@@ -52,6 +53,7 @@
 #include "fem/explicit_dynamics.h"
 #include <functional>
 #include <memory>
+#include <optional>
 
 namespace dembridge::coupling
 {
@@ -85,6 +87,9 @@ struct CouplingSettings
   double time_step = 0;          ///< s; 0: automatic
   bool check_time_step = true;   ///< refuse a given step above the estimate
   std::vector<DrivenBoundary> driven;
+  /// The particle region grows where the continuum nears the particles' strength
+  /// (adaptive_region.h; one process).
+  AdaptiveRegionSettings adaptive;
 };
 
 class CoupledProblem
@@ -173,6 +178,36 @@ public:
     Vec3 first_position = Vec3::Zero(); ///< that bond's midpoint, m
   };
   const BandDamage& band_damage() const { return band_damage_; }
+  /// The adaptive particle region (adaptive_region.h); nullptr unless enabled.
+  const AdaptiveRegion* adaptive_region() const { return adaptive_.get(); }
+  /// After a record step (adaptive runs): measures the utilisation and, where it passes the
+  /// threshold, grows the region (region_growth.cc): both sides are rebuilt on the new region
+  /// and take over the state, and the event is returned. Throws std::runtime_error when the
+  /// region would have to grow through the whole body.
+  std::optional<GrowthEvent> grow_region_if_due();
+  /// The growth itself: the region becomes its cells and @p cells (one char per grid cell of
+  /// the adaptive region); grow_region_if_due calls it, tests call it directly.
+  GrowthEvent grow_region(const std::vector<char>& cells);
+  const std::vector<GrowthEvent>& growth_events() const { return growth_events_; }
+  /// Growth held back by `maximum particles` (the first time it was).
+  struct GrowthCap
+  {
+    bool reached = false;
+    double time = -1;          ///< s
+    std::size_t particles = 0; ///< the region the growth would have made
+  };
+  const GrowthCap& growth_cap() const { return growth_cap_; }
+  /// The run loop's growth checks (coupled_run.cc), kept here for checkpoints.
+  struct GrowthChecks
+  {
+    long last_step = 0;     ///< the step count at the last check
+    long broken_bonds = 0;  ///< the broken bonds then
+    long planned_steps = 0; ///< the run's steps as counted anew at the last growth; 0: none
+  };
+  GrowthChecks& growth_checks() { return growth_checks_; }
+  /// Fracture energy of the whole run (the particle models before each growth included), J.
+  double fracture_energy() const;
+
   /// CG iterations of the last multiplier solve.
   unsigned int last_solve_iterations() const { return last_iterations_; }
   /// Wall seconds spent in the coupling (FE side, transfers, multipliers) and in the particles.
@@ -181,6 +216,16 @@ public:
 private:
   class Tie;
   friend class Tie;
+  /// Builds both sides on the current geometry; @p adopt runs on rank 0 right after the particle
+  /// model is made (before blending): a growth hands the earlier state over there.
+  void build(const std::function<void()>& adopt);
+  /// The adaptive region's grid, packing and first cells (adaptive_region.h).
+  void prepare_adaptive_region();
+  /// The current region as the handshake's volume and the packing's filter.
+  void apply_region();
+  /// Stored energy of both sides now, between steps (growth events): strain, load potential
+  /// and kinetic energy with the half-step velocities, J; @p strain receives the strain part.
+  double stored_energy_now(double* strain);
   void tie_forces(dem::ParticleStore& p, double dt, bool record);
   void tie_after_update(const dem::ParticleStore& p, double dt, bool record);
   void refresh_energies(bool record);
@@ -223,11 +268,30 @@ private:
   Energies energy_;
   BandDamage band_damage_;
   std::vector<double> band_tensile_, band_shear_; ///< the band bonds' own strengths, Pa
+  std::vector<double> band_kappa_; ///< their failure index at the last record (adaptive runs)
   void check_band_damage();
   double work_q_particles_ = 0, damping_particles_ = 0;
   double lead_q_ = 0, lead_damping_ = 0; ///< this step's half-step leads of the two works
   double max_gap_ = 0;
   unsigned int last_iterations_ = 0;
   double coupling_seconds_ = 0;
+
+  // Adaptive region (region_growth.cc).
+  std::unique_ptr<AdaptiveRegion> adaptive_;
+  GridLines fine_planes_; ///< the envelope's planes: the FE grid's fine cells lie between them
+  std::vector<std::int32_t> packing_of_; ///< each particle's index in the envelope's packing
+  std::vector<GrowthEvent> growth_events_;
+  GrowthCap growth_cap_;
+  GrowthChecks growth_checks_;
+  /// Checkpoints of an adaptive run: the region, the events, the carried works; a region that
+  /// grew since the start is rebuilt before the models' state is read (region_growth.cc).
+  void visit_adaptive_state(dem::StateArchive& a);
+  /// The works of the models before the last growth, summed at the growth (J): the energies
+  /// reported add them to the current models' own.
+  struct CarriedWork
+  {
+    double dem_damping = 0, dem_external = 0, dem_other = 0;
+    double fe_damping = 0, fe_boundary_work = 0, multiplier_work_fe = 0;
+  } carried_;
 };
 } // namespace dembridge::coupling

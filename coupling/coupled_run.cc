@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <deal.II/base/mpi.h>
+#include <stdexcept>
 
 namespace dembridge::coupling
 {
@@ -24,9 +25,9 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto last_progress = start, last_checkpoint = start;
-  const double dt = problem.time_step();
   // the steps to the end time, rounded so that t_end itself is reached
-  const long planned = std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / dt - 1e-9))));
+  long planned =
+      std::min(s.max_steps, std::max(1L, long(std::ceil(s.end_time / problem.time_step() - 1e-9))));
   const long record_every = std::max(1L, s.record_interval);
 
   CoupledRunProgress progress;
@@ -34,16 +35,34 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
   observer.on_start(problem, progress); // a resumed run restores the state here
   const double coupling_before = problem.coupling_seconds();
   const long first = problem.steps();
+  if (problem.growth_checks().planned_steps > 0) // a resumed run whose region grew
+    planned = problem.growth_checks().planned_steps;
   const dem::StepRate step_rate(first, start); // a resumed run's own steps, from its start
 
   CoupledRunResult r;
   r.stop_reason = planned == s.max_steps ? "max steps" : "end time";
+  // an adaptive region is checked at every record, and while bonds break every few steps
+  const AdaptiveRegion* adaptive = problem.adaptive_region();
+  auto& checks = problem.growth_checks(); // a resumed run's from the checkpoint
+  long& last_check = checks.last_step;
+  long& broken_at_check = checks.broken_bonds;
+  auto broken_bonds = [&]
+  {
+    const auto* solver = problem.particle_solver();
+    long n = solver ? solver->n_broken_bonds() : 0;
+    if (dealii::Utilities::MPI::n_mpi_processes(problem.communicator()) > 1)
+      n = dealii::Utilities::MPI::broadcast(problem.communicator(), n, 0);
+    return n;
+  };
   for (long n = first; n < planned; ++n)
   {
     const bool last = n + 1 == planned;
     const bool snapshot =
         n == 0 || last || (s.snapshot_interval > 0 && (n + 1) % s.snapshot_interval == 0);
-    const bool record = n == 0 || last || snapshot || (n + 1) % record_every == 0;
+    const bool crack_check = adaptive && adaptive->settings().crack_check_interval > 0 &&
+                             n + 1 - last_check >= adaptive->settings().crack_check_interval &&
+                             broken_bonds() > broken_at_check;
+    const bool record = n == 0 || last || snapshot || crack_check || (n + 1) % record_every == 0;
     problem.step(record);
     if (record)
     {
@@ -51,6 +70,20 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
       progress.max_balance_error = std::max(progress.max_balance_error, e.balance_error());
       progress.max_tie_gap = std::max(progress.max_tie_gap, problem.max_tie_gap());
       observer.on_record(problem);
+      if (adaptive && !last)
+      {
+        last_check = n + 1;
+        broken_at_check = broken_bonds();
+        if (const auto event = problem.grow_region_if_due())
+        {
+          observer.on_region_growth(problem, *event);
+          // the common step may have changed: the steps left to the end time anew
+          const long left =
+              long(std::ceil((s.end_time - problem.time()) / problem.time_step() - 1e-9));
+          planned = std::min(s.max_steps, n + 1 + std::max(1L, left));
+          checks.planned_steps = planned;
+        }
+      }
       bool at_rest = false;
       if (s.rest_tolerance > 0 && problem.time() >= s.rest_after)
       {
@@ -81,6 +114,7 @@ CoupledRunResult run_coupled(CoupledProblem& problem, const CoupledRunSettings& 
     // Checkpoints between steps, after the step's records (as run_explicit.cc): on simulated
     // time (reproducible steps) or on wall time.
     bool checkpoint = false;
+    const double dt = problem.time_step();
     if (s.checkpoint_interval > 0 && problem.time() + 0.5 * dt >= progress.next_checkpoint_time)
     {
       checkpoint = true;

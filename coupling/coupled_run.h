@@ -10,6 +10,9 @@
 //         `rest_records` consecutive records. The run is damped (Coupling/mass damping) for
 //         such quasi-static use; a share below the tolerance at one record can be the turning
 //         point of an oscillation, several in a row cannot (a period spans many records).
+// Adaptive particle region: after each record the region may grow (CoupledProblem::
+// grow_region_if_due); the observer hears of it, and the steps left are counted anew with the
+// common step the grown problem has.
 // Measurements at the end (every rank holds them): the energies, the largest energy balance
 // error over the records (coupled_problem.h), and for a pulse started on one side
 // (measurements.h) the share of the initial energy left on that side (reflected) and on the
@@ -60,6 +63,9 @@ public:
   virtual void on_checkpoint(CoupledProblem&, CoupledRunProgress&) {}
   virtual void on_record(const CoupledProblem&) {}
   virtual void on_snapshot(CoupledProblem&) {}
+  /// After the adaptive particle region grew (between steps, after the record that asked for
+  /// it): the problem's particles, bonds and continuum are new objects.
+  virtual void on_region_growth(CoupledProblem&, const GrowthEvent&) {}
   virtual void on_progress(const CoupledProblem&, double /*fraction*/, double /*steps_per_s*/,
                            double /*eta_s*/)
   {

@@ -19,9 +19,11 @@ void CoupledProblem::gather_state()
 
 void CoupledProblem::visit_state(dem::StateArchive& a)
 {
-  solver_->visit_state(a); // /particles/, /bonds/, /solver/ (rank 0's)
-  fe_->visit_state(a);     // /fe/
-  visit_tie(a);            // /coupling/
+  if (adaptive_)
+    visit_adaptive_state(a); // first: the models below are the region's
+  solver_->visit_state(a);   // /particles/, /bonds/, /solver/ (rank 0's)
+  fe_->visit_state(a);       // /fe/
+  visit_tie(a);              // /coupling/
 }
 
 void CoupledProblem::scatter_state()

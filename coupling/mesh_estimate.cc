@@ -39,8 +39,8 @@ ContinuumMeshSize estimate_continuum_mesh(const CoupledCase& c)
     }
     return size;
   }
-  const auto steps = coupled_mesh_steps(h, s.element_size, s.band_element_size, s.far_element_size,
-                                        s.element_growth);
+  const auto steps = coupled_mesh_steps(h.geometry(), h.band_planes(), s.element_size,
+                                        s.band_element_size, s.far_element_size, s.element_growth);
   for (const auto& axis : steps)
     size.cells *= double(axis.size()), size.dofs *= double(axis.size()) + 1;
   return size;

@@ -27,6 +27,10 @@ void MultiplierSolver::setup(const PointTransfer& transfer,
     throw std::runtime_error("Coupling/tying: node tying runs on one process only (use "
                              "'particle' under mpirun)");
   G_ = &transfer;
+  // a setup starts afresh (an adaptive region sets the tie up again after each growth)
+  factorised_ = false;
+  for (int c = 0; c < 3; ++c)
+    blocks_[c].clear(), factor_[c].reset();
   inv_m_ = std::move(particle_inverse_mass);
   inv_M_ = std::move(slot_inverse_mass);
   tying_ = tying;

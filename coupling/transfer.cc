@@ -56,6 +56,7 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
   const auto& base = fe_system.base_element(0);
   const unsigned int n_base = base.n_dofs_per_cell();
   std::map<types::global_dof_index, unsigned int> slot_of; // x-DoF of a node -> slot
+  slot_point_.clear();                                     // a reinit starts afresh
   std::vector<std::vector<std::pair<unsigned int, double>>> rows(n_points_);
   std::vector<types::global_dof_index> slot_dofs; // 3 per slot
   std::vector<types::global_dof_index> cell_dofs(fe_system.n_dofs_per_cell());

@@ -89,8 +89,15 @@ public:
     std::vector<dealii::SymmetricTensor<2, 3>> sigma; ///< Pa, int sigma dx / volume
   };
   LayerStresses layer_stresses(unsigned int axis, const std::vector<double>& edges) const;
-  /// Write displacement, strain, stress and von Mises stress (.vtu per rank, .pvtu, .pvd).
+  /// Write displacement, strain, stress and von Mises stress (.vtu per rank, .pvtu, .pvd), and
+  /// the cell fields added by add_cell_output.
   void output_results(const std::filesystem::path& output_dir, unsigned int cycle, double time);
+  /// A cell field written with the next outputs: @p value at each cell's centre.
+  void add_cell_output(const std::string& name,
+                       std::function<double(const dealii::Point<3>&)> value)
+  {
+    cell_outputs.emplace_back(name, std::move(value));
+  }
 
   dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
   dealii::types::global_cell_index n_cells() const { return triangulation.n_global_active_cells(); }
@@ -146,6 +153,7 @@ protected:
   LA::MPI::Vector solution;       ///< ghosted displacement
 
   std::vector<std::pair<double, std::string>> pvtu_records;
+  std::vector<std::pair<std::string, std::function<double(const dealii::Point<3>&)>>> cell_outputs;
 };
 
 } // namespace dembridge::fem

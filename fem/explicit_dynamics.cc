@@ -184,6 +184,38 @@ void ExplicitDynamics::set_initial_state(const Function<3>& u0, const Function<3
   energy = Energies();
 }
 
+void ExplicitDynamics::continue_from(const ExplicitDynamics& earlier, const Function<3>& velocity)
+{
+  current_time = earlier.current_time;
+  step_number = earlier.step_number;
+  pvtu_records = earlier.pvtu_records;
+  if (driven.empty())
+    return;
+  LA::MPI::Vector v(locally_owned_dofs, mpi_communicator);
+  VectorTools::interpolate(mapping, dof_handler, velocity, v);
+  {
+    LocalArray from(v), to(velocity_half);
+    for (const auto& d : driven)
+      to[d.local] = from[d.local];
+  }
+}
+
+ExplicitDynamics::EnergiesNow ExplicitDynamics::energies_now() const
+{
+  LA::MPI::Vector Ku(locally_owned_dofs, mpi_communicator);
+  system_matrix.vmult(Ku, u_owned);
+  const std::size_t n = locally_owned_dofs.n_elements();
+  LocalArray v(velocity_half), m(mass);
+  double kinetic = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    kinetic += 0.5 * m[i] * v[i] * v[i];
+  EnergiesNow e;
+  e.strain = 0.5 * (u_owned * Ku);
+  e.load_potential = -(external_force * u_owned);
+  e.kinetic = Utilities::MPI::sum(kinetic, mpi_communicator);
+  return e;
+}
+
 void ExplicitDynamics::prescribe_boundary_displacement(const types::boundary_id id,
                                                        const ComponentSet& mask,
                                                        const Function<3>& g,

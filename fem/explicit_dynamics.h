@@ -74,6 +74,11 @@ public:
   void setup();
   /// Replaces the initial state (after setup): u_0 = u0(x), initial velocity v0(x) at the nodes.
   void set_initial_state(const dealii::Function<3>& u0, const dealii::Function<3>& v0);
+  /// Continues the time line of @p earlier, a continuum of the same run on a mesh that has lost
+  /// cells since (a coupled run whose particle region grew): its time, step count and .pvd
+  /// records, and @p velocity on the driven DoFs (set_initial_state holds them at rest). The
+  /// works start anew from here (the caller carries their sums). After set_initial_state.
+  void continue_from(const ExplicitDynamics& earlier, const dealii::Function<3>& velocity);
   /// Boundary @p id moves in the components of @p mask to u = ramp(t) g(x) (after setup):
   /// its DoFs are driven, the force they need is a reaction whose work is booked.
   void prescribe_boundary_displacement(dealii::types::boundary_id id, const ComponentSet& mask,
@@ -127,6 +132,15 @@ public:
   /// The assembled (weighted, unconstrained) stiffness matrix and its cell-by-cell form.
   const LA::MPI::SparseMatrix& stiffness_matrix() const { return system_matrix; }
   const ElementOperator& element_operator() const { return cell_operator; }
+
+  /// Of the current state, between steps (collective, J): the strain energy 1/2 u.K u with the
+  /// weighted K, the load potential -f_ext.u, and 1/2 v.M v with the weighted lumped M and the
+  /// velocity v_{n-1/2}.
+  struct EnergiesNow
+  {
+    double strain = 0, load_potential = 0, kinetic = 0;
+  };
+  EnergiesNow energies_now() const;
 
   /// Energies at the last completed step n (J); see the file comment.
   struct Energies

@@ -294,6 +294,14 @@ void ElasticProblem::output_results(const std::filesystem::path& output_dir,
   for (unsigned int i = 0; i < subdomain.size(); ++i)
     subdomain(i) = triangulation.locally_owned_subdomain();
   data_out.add_data_vector(subdomain, "subdomain");
+  std::vector<Vector<float>> fields(cell_outputs.size(), Vector<float>(subdomain.size()));
+  for (std::size_t k = 0; k < cell_outputs.size(); ++k)
+  {
+    for (const auto& cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        fields[k](cell->active_cell_index()) = float(cell_outputs[k].second(cell->center()));
+    data_out.add_data_vector(fields[k], cell_outputs[k].first);
+  }
   data_out.build_patches(mapping, fe.degree);
 
   const std::string pvtu = data_out.write_vtu_with_pvtu_record(

@@ -144,6 +144,12 @@ public:
   /// Latest end of any load ramp: after it, loads are constant.
   double last_ramp_end() const;
 
+  /// Continues a run on a model rebuilt at time @p time (a coupled run whose particle region
+  /// grew): loads and ramps read this time, and the crack log starts with @p earlier_cracks
+  /// (their bond indices in this store) and its counts by mode. Before the first step; the
+  /// energy sums start anew at the next step, as at t = 0 (the caller carries the earlier ones).
+  void continue_run(double time, std::vector<CrackEvent> earlier_cracks);
+
   /// Checkpoints (dem/core/state_archive.h, docs/checkpoint.md): saves or restores the complete
   /// state of the run between steps: the particles, the bonds (constants, state, damage), time
   /// and step, the energy accumulators, the support reactions of the last step, the crack log

@@ -10,6 +10,7 @@
 #include "dem/solvers/run_state.h"
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace dembridge::dem
 {
@@ -19,6 +20,19 @@ bool ExplicitSolver::checkpointable() const
     if (!c->checkpointable())
       return false;
   return true;
+}
+
+void ExplicitSolver::continue_run(const double time, std::vector<CrackEvent> earlier_cracks)
+{
+  if (steps_ != 0)
+    throw std::logic_error("ExplicitSolver::continue_run: after the first step");
+  time_ = time;
+  cracks_ = std::move(earlier_cracks);
+  broken_by_mode_ = {};
+  for (const auto& c : cracks_)
+    ++broken_by_mode_[int(c.mode)];
+  if (b_.has_failure() && cracks_.capacity() < cracks_.size() + 256)
+    cracks_.reserve(cracks_.size() + 256);
 }
 
 void ExplicitSolver::visit_state(StateArchive& a)

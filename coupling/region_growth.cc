@@ -1,0 +1,533 @@
+// CoupledProblem's adaptive particle region (coupled_problem.h, adaptive_region.h): its set-up
+// and a growth event.
+//
+// A growth event, between steps (right after a record step n, state x^{n+1}, v^{n+1/2}):
+//  1. the energy before: both sides' strain, load potential and kinetic energy with the
+//     half-step velocities (blending weights included);
+//  2. what the particles that join take from the continuum, at their reference centres X:
+//     u(X), v(X), and the rotation and spin 1/2 curl u, 1/2 curl v (central differences over
+//     1e-3 r inside the cell); their position X + u(X), velocity v(X), orientation the rotation
+//     (a quaternion of the rotation vector), angular velocity the spin. Their bonds are formed in
+//     the reference configuration, so that they carry the continuum's strain at once;
+//  3. both sides are rebuilt on the larger region (the continuum on the same grid, less the
+//     cells that turned particle-only; the band along the new region's faces; the constraint
+//     matrix and the common step anew); the particles and bonds that were there take their
+//     state (positions, velocities, orientations, damage, strengths, broken or not), the
+//     continuum its nodal displacements and velocities (every node of the new mesh was one of
+//     the old: the region only grows), the particle solver the time and the crack log;
+//  4. the tie's gap at the new interface; the energy after, as in 1.
+// Energy bookkeeping: the models' works (damping, loads, supports, fracture, the tie's work on
+// the continuum) up to the record before the event are carried and added to the new models'
+// own; the initial energy stays the run's. The balance error then holds the events' jumps (and
+// one step's work between the record and the event, of order 1 / steps of the work): it is not
+// corrected for them.
+#include "coupling/coupled_problem.h"
+
+#include "dem/measurements/particle_stress.h"
+#include "dem/packing/packings.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace dembridge::coupling
+{
+using namespace dealii;
+
+namespace
+{
+using Key = std::array<std::int64_t, 3>;
+
+Key node_key(const Point<3>& x, double q)
+{
+  return Key{{std::llround(x[0] / q), std::llround(x[1] / q), std::llround(x[2] / q)}};
+}
+
+/// The nodal values of an earlier continuum at its nodes, as a function for interpolation.
+class NodalField : public Function<3>
+{
+public:
+  NodalField(const std::map<Key, Vec3>& values, double q) : Function<3>(3), values_(values), q_(q)
+  {
+  }
+  double value(const Point<3>& x, const unsigned int c) const override
+  {
+    const auto it = values_.find(node_key(x, q_));
+    if (it == values_.end())
+      throw std::logic_error("adaptive region: a node of the new continuum was not one of the "
+                             "earlier's");
+    return it->second[c];
+  }
+
+private:
+  const std::map<Key, Vec3>& values_;
+  double q_;
+};
+
+/// u and v at every node of @p fe (one process), keyed by position.
+void nodal_values(const fem::ExplicitDynamics& fe, double q, std::map<Key, Vec3>& u,
+                  std::map<Key, Vec3>& v)
+{
+  const auto& dofs = fe.get_dof_handler();
+  for (const auto& cell : dofs.active_cell_iterators())
+    for (const unsigned int k : cell->vertex_indices())
+    {
+      const Key key = node_key(cell->vertex(k), q);
+      if (u.count(key))
+        continue;
+      Vec3 uk, vk;
+      for (unsigned int c = 0; c < 3; ++c)
+      {
+        const auto i = cell->vertex_dof_index(k, c);
+        uk[c] = fe.displacement()(i);
+        vk[c] = fe.velocity()(i);
+      }
+      u[key] = uk;
+      v[key] = vk;
+    }
+}
+
+/// Rotation 1/2 curl f from the gradient g(i, j) = d f_i / d x_j.
+Vec3 half_curl(const Eigen::Matrix3d& g)
+{
+  return 0.5 * Vec3(g(2, 1) - g(1, 2), g(0, 2) - g(2, 0), g(1, 0) - g(0, 1));
+}
+} // namespace
+
+void CoupledProblem::prepare_adaptive_region()
+{
+  auto& g = settings_.geometry;
+  const auto& a = settings_.adaptive;
+  if (Utilities::MPI::n_mpi_processes(comm_) > 1)
+    throw std::runtime_error("Coupling/Adaptive region/enabled: an adaptive region runs on one "
+                             "MPI process (this run has " +
+                             std::to_string(Utilities::MPI::n_mpi_processes(comm_)) + ")");
+  if (g.region)
+    throw std::runtime_error("Coupling/particle region file: an adaptive region starts from the "
+                             "particle box (Particles/origin, box size), not a volume");
+  using Kind = dem::ParticleSource::Kind;
+  auto& src = dem_case_.particles;
+  if (!(src.kind == Kind::cubic || src.kind == Kind::hcp || src.kind == Kind::fcc))
+    throw std::runtime_error("Particles/source: an adaptive region grows a lattice (cubic, hcp "
+                             "or fcc) by whole periods; a random packing is not available yet");
+  if (dem_case_.contacts.enabled() || !dem_case_.walls.empty())
+    throw std::runtime_error("Contacts/model: contacts and walls are not available with an "
+                             "adaptive region yet (their state is not handed over at a growth)");
+  const auto& damage = dem_case_.damage;
+  if (damage.law.mode == dem::FailureMode::none)
+    throw std::runtime_error("Coupling/Adaptive region/enabled: the particle model has no bond "
+                             "strengths to grow against (Damage/failure = none)");
+  if (damage.scatter != dem::StrengthScatter::none && !damage.scatter_by_position)
+    throw std::runtime_error("Damage/scatter key: an adaptive region needs scatter key = position "
+                             "(a bond keeps its strength whatever the region, as in full DEM)");
+  const Vec3 lo = a.envelope_given ? a.envelope_lo : g.domain_lo;
+  const Vec3 hi = a.envelope_given ? a.envelope_hi : g.domain_hi;
+  for (int d = 0; d < 3; ++d)
+    fine_planes_[d] = {lo[d], hi[d]};
+  const GridLines lines = grid_lines(
+      g.domain_lo,
+      coupled_mesh_steps(g, fine_planes_, settings_.element_size, settings_.band_element_size,
+                         settings_.far_element_size, settings_.element_growth));
+  // the packing over the envelope, once (every rank: the region's cells are every rank's)
+  dem::ParticleSource whole = src;
+  whole.origin = lo;
+  whole.box_size = hi - lo;
+  whole.keep = nullptr;
+  dem::ParticleStore packing;
+  dem::generate_particles(whole, packing, dem_case_.run.threads);
+  PackingStrength strength;
+  strength.law = damage.law;
+  strength.tensile_strength = damage.tensile_strength;
+  strength.shear_strength =
+      damage.law.shear == dem::ShearCriterion::constant ? damage.shear_strength : damage.cohesion;
+  adaptive_ = std::make_unique<AdaptiveRegion>(a, lines, g, strength, packing.reference_position,
+                                               2 * src.radius);
+  adaptive_->start_from_box(g.particle_lo, g.particle_hi, "Particles/origin");
+  src.origin = lo;
+  src.box_size = hi - lo;
+  apply_region();
+}
+
+void CoupledProblem::apply_region()
+{
+  settings_.geometry.region = adaptive_->volume();
+  const AdaptiveRegion* a = adaptive_.get();
+  dem_case_.particles.keep = [a](const Vec3& x) { return a->in_region(x); };
+}
+
+double CoupledProblem::stored_energy_now(double* strain)
+{
+  double dem[2] = {0, 0}; // strain, kinetic
+  if (root_)
+  {
+    const auto& p = model_.particles;
+    dem[0] = dem::particle_stresses(p, model_.bonds).strain_energy;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      dem[1] += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
+                0.5 * p.inertia[i] * p.angular_velocity[i].squaredNorm();
+  }
+  MPI_Bcast(dem, 2, MPI_DOUBLE, 0, comm_);
+  const auto fe = fe_->energies_now();
+  if (strain)
+    *strain = dem[0] + fe.strain;
+  return dem[0] + dem[1] + fe.strain + fe.load_potential + fe.kinetic;
+}
+
+double CoupledProblem::fracture_energy() const
+{
+  return carried_.dem_other + (solver_ ? solver_->energy().fracture : 0.0);
+}
+
+std::optional<GrowthEvent> CoupledProblem::grow_region_if_due()
+{
+  if (!adaptive_)
+    return std::nullopt;
+  // the band's bonds at or above the band threshold mark their cells too: the particle model's
+  // own failure index where damage nears the band
+  std::vector<Vec3> loaded_bonds;
+  if (root_)
+  {
+    const auto& b = model_.bonds;
+    const auto& X = model_.particles.reference_position;
+    for (std::size_t n = 0; n < band_kappa_.size(); ++n)
+      if (band_kappa_[n] >= adaptive_->settings().band_threshold)
+      {
+        const std::size_t k = blending_.band_bonds[n];
+        loaded_bonds.push_back(0.5 * (X[b.a[k]] + X[b.b[k]]));
+      }
+  }
+  adaptive_->measure(*fe_, loaded_bonds);
+  const auto proposal = adaptive_->propose();
+  using Kind = AdaptiveRegion::Proposal::Kind;
+  const double threshold = adaptive_->settings().threshold;
+  if (proposal.kind == Kind::whole_body)
+  {
+    std::ostringstream m;
+    m << "Coupling/Adaptive region/threshold: at t = " << time_
+      << " s the continuum's utilisation passes " << threshold
+      << " in every cell (a uniform stress): the particle region would have to grow through the "
+         "whole body; run it as full DEM (Mode = dem) or raise the threshold";
+    throw std::runtime_error(m.str());
+  }
+  if (proposal.kind == Kind::capped)
+  {
+    if (!growth_cap_.reached)
+    {
+      growth_cap_ = {true, time_, proposal.particles};
+      if (root_)
+      {
+        std::printf("coupling: the particle region stops growing at t = %.4g s: it would hold "
+                    "%zu particles, above Coupling/Adaptive region/maximum particles (%zu)\n",
+                    time_, proposal.particles, adaptive_->settings().maximum_particles);
+        std::fflush(stdout);
+      }
+    }
+    return std::nullopt;
+  }
+  if (proposal.kind != Kind::grow)
+    return std::nullopt;
+
+  auto event = grow_region(proposal.cells);
+  event.marked_cells = proposal.marked;
+  event.marked_by_bonds = proposal.marked_by_bonds;
+  event.max_utilisation = adaptive_->max_utilisation();
+  growth_events_.back() = event;
+  if (root_)
+  {
+    std::printf("coupling: the particle region grew at t = %.5g s: %zu cells marked (%zu by "
+                "band bonds; largest utilisation %.3f), +%zu cells (%zu), +%zu particles (%zu), "
+                "+%zu bonds; energy jump %.3e J (%.2e of the strain energy); time step %.4g s; "
+                "%.2f s\n",
+                event.time, event.marked_cells, event.marked_by_bonds, event.max_utilisation,
+                event.cells_added, event.region_cells, event.particles_added, event.n_particles,
+                event.bonds_added, event.energy_jump(), event.energy_jump_ratio(), event.time_step,
+                event.wall_seconds);
+    std::fflush(stdout);
+  }
+  return event;
+}
+
+void CoupledProblem::visit_adaptive_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "adaptive");
+  const std::vector<char> cells_now = adaptive_->cells();
+  adaptive_->visit_state(a);
+  a.io("last_check_step", growth_checks_.last_step);
+  a.io("broken_bonds_at_check", growth_checks_.broken_bonds);
+  a.io("planned_steps", growth_checks_.planned_steps);
+  a.io("cap_reached", growth_cap_.reached);
+  a.io("cap_time", growth_cap_.time);
+  a.io("cap_particles", growth_cap_.particles);
+  {
+    dem::StateGroup works(a, "carried_work");
+    a.io("dem_damping", carried_.dem_damping);
+    a.io("dem_external", carried_.dem_external);
+    a.io("dem_other", carried_.dem_other);
+    a.io("fe_damping", carried_.fe_damping);
+    a.io("fe_boundary_work", carried_.fe_boundary_work);
+    a.io("multiplier_work_fe", carried_.multiplier_work_fe);
+  }
+  // the events, 16 numbers each
+  constexpr std::size_t fields = 16;
+  std::vector<double> events;
+  for (const auto& e : growth_events_)
+    events.insert(events.end(),
+                  {e.time, double(e.step), double(e.cells_added), double(e.region_cells),
+                   double(e.particles_added), double(e.n_particles), double(e.bonds_added),
+                   double(e.n_bonds), double(e.marked_cells), double(e.marked_by_bonds),
+                   e.max_utilisation, e.energy_before, e.energy_after, e.strain_energy, e.time_step,
+                   e.wall_seconds});
+  a.io("events", events);
+  if (!a.loading())
+    return;
+  if (events.size() % fields != 0)
+    throw dem::InputError(a.where() + "events: " + std::to_string(events.size()) +
+                          " numbers, not a whole number of events");
+  growth_events_.clear();
+  for (std::size_t k = 0; k < events.size(); k += fields)
+  {
+    const double* v = events.data() + k;
+    GrowthEvent e;
+    e.time = v[0];
+    e.step = long(v[1]);
+    e.cells_added = std::size_t(v[2]), e.region_cells = std::size_t(v[3]);
+    e.particles_added = std::size_t(v[4]), e.n_particles = std::size_t(v[5]);
+    e.bonds_added = std::size_t(v[6]), e.n_bonds = std::size_t(v[7]);
+    e.marked_cells = std::size_t(v[8]), e.marked_by_bonds = std::size_t(v[9]);
+    e.max_utilisation = v[10];
+    e.energy_before = v[11], e.energy_after = v[12], e.strain_energy = v[13];
+    e.time_step = v[14], e.wall_seconds = v[15];
+    growth_events_.push_back(e);
+  }
+  if (adaptive_->cells() == cells_now)
+    return;
+  // the region grew before the checkpoint: both models anew on it (their state is read next)
+  solver_.reset();
+  auto old_fe = std::move(fe_);
+  auto old_handshake = std::move(handshake_);
+  apply_region();
+  build(nullptr);
+}
+
+GrowthEvent CoupledProblem::grow_region(const std::vector<char>& cells)
+{
+  if (!adaptive_)
+    throw std::logic_error("CoupledProblem::grow_region: no adaptive region");
+  const auto start = std::chrono::steady_clock::now();
+  GrowthEvent event;
+  event.time = time_;
+  event.step = steps_;
+  event.energy_before = stored_energy_now(&event.strain_energy);
+  const std::size_t particles_before = n_particles_;
+  const std::size_t bonds_before = root_ ? model_.bonds.size() : 0;
+  const std::size_t cells_before = adaptive_->n_region_cells();
+
+  // 2. the continuum at the centres that join: u, v and their rotations (one process: rank 0
+  // holds the points)
+  const std::vector<char> old_cells = adaptive_->cells();
+  std::vector<char> grown = cells;
+  for (std::size_t c = 0; c < grown.size() && c < old_cells.size(); ++c)
+    grown[c] = grown[c] || old_cells[c]; // no switching back
+  adaptive_->set_cells(grown);
+  std::vector<Vec3> fresh;
+  for (const Vec3& X : adaptive_->packing())
+    if (adaptive_->in_region(X) && !adaptive_->in_cells(old_cells, X))
+      fresh.push_back(X);
+  const double delta = 1e-3 * dem_case_.particles.radius;
+  std::vector<Vec3> points;
+  for (const Vec3& X : fresh)
+  {
+    points.push_back(X);
+    for (int d = 0; d < 3; ++d)
+      for (const double s : {-1.0, 1.0})
+        points.push_back(X + s * delta * Vec3::Unit(d));
+  }
+  std::map<std::int32_t, std::array<Vec3, 4>> taken; // packing index: u, v, rotation, spin
+  {
+    PointTransfer at;
+    at.reinit(*fe_, points, "Coupling/Adaptive region");
+    std::vector<double> slots, u, v;
+    at.gather(fe_->displacement(), slots);
+    at.interpolate(slots, u);
+    at.gather(fe_->velocity(), slots);
+    at.interpolate(slots, v);
+    auto value = [](const std::vector<double>& f, std::size_t p)
+    { return Vec3(f[3 * p], f[3 * p + 1], f[3 * p + 2]); };
+    for (std::size_t n = 0; n < fresh.size(); ++n)
+    {
+      const std::size_t p0 = 7 * n;
+      Eigen::Matrix3d gu, gv;
+      for (int d = 0; d < 3; ++d)
+      {
+        gu.col(d) = (value(u, p0 + 2 + 2 * d) - value(u, p0 + 1 + 2 * d)) / (2 * delta);
+        gv.col(d) = (value(v, p0 + 2 + 2 * d) - value(v, p0 + 1 + 2 * d)) / (2 * delta);
+      }
+      taken[adaptive_->packing_index(fresh[n])] = {
+          {value(u, p0), value(v, p0), half_curl(gu), half_curl(gv)}};
+    }
+  }
+
+  // 1./3. the earlier models' state by packing index, their works carried
+  const double q = 1e-6 * 2 * dem_case_.particles.radius;
+  std::map<Key, Vec3> node_u, node_v;
+  nodal_values(*fe_, q, node_u, node_v);
+  dem::Model old = std::move(model_);
+  const std::vector<std::int32_t> old_packing = packing_of_;
+  std::vector<dem::CrackEvent> cracks;
+  std::vector<double> old_tensile, old_shear;
+  if (root_)
+  {
+    const auto& e = solver_->energy();
+    carried_.dem_damping += e.damping;
+    carried_.dem_external += e.external;
+    carried_.dem_other += e.fracture + e.friction + e.contact_damping;
+    cracks = solver_->cracks();
+    auto& b = old.bonds;
+    old_tensile = b.tensile_strength;
+    old_shear = b.shear_strength;
+    for (std::size_t n = 0; n < blending_.band_bonds.size() && n < band_tensile_.size(); ++n)
+    {
+      old_tensile[blending_.band_bonds[n]] = band_tensile_[n];
+      old_shear[blending_.band_bonds[n]] = band_shear_[n];
+    }
+  }
+  {
+    const auto& f = fe_->energies();
+    carried_.fe_damping += f.damping;
+    carried_.fe_boundary_work += f.boundary_work;
+    carried_.multiplier_work_fe += f.outside_work;
+  }
+  solver_.reset(); // it held the old model's stores
+  auto old_fe = std::move(fe_);
+  auto old_handshake = std::move(handshake_);
+  apply_region();
+
+  std::vector<long> new_bond; // old bond -> new bond
+  build(
+      [&]
+      {
+        auto& p = model_.particles;
+        auto& b = model_.bonds;
+        const auto& op = old.particles;
+        std::vector<int> old_of(adaptive_->packing().size(), -1); // packing -> old particle
+        for (std::size_t i = 0; i < op.size(); ++i)
+          old_of[std::size_t(old_packing[i])] = int(i);
+        std::vector<std::int32_t> id_of_old(op.size(), -1); // old particle -> new id
+        for (std::size_t i = 0; i < p.size(); ++i)
+        {
+          const int o = old_of[std::size_t(packing_of_[i])];
+          if (o >= 0)
+          {
+            id_of_old[std::size_t(o)] = p.id[i];
+            p.position[i] = op.position[o];
+            p.velocity[i] = op.velocity[o];
+            p.angular_velocity[i] = op.angular_velocity[o];
+            p.orientation[i] = op.orientation[o];
+            continue;
+          }
+          const auto& t = taken.at(packing_of_[i]);
+          p.position[i] = p.reference_position[i] + t[0];
+          p.velocity[i] = t[1];
+          const double angle = t[2].norm();
+          p.orientation[i] =
+              angle > 0 ? dem::Quat(Eigen::AngleAxisd(angle, t[2] / angle)) : dem::Quat::Identity();
+          p.angular_velocity[i] = t[3];
+        }
+        // bonds by their particles' packing indices
+        std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> by_pair;
+        const auto& ob = old.bonds;
+        for (std::size_t k = 0; k < ob.size(); ++k)
+        {
+          const auto a = old_packing[ob.a[k]], c = old_packing[ob.b[k]];
+          by_pair[{std::min(a, c), std::max(a, c)}] = k;
+        }
+        new_bond.assign(ob.size(), -1);
+        for (std::size_t k = 0; k < b.size(); ++k)
+        {
+          const auto a = packing_of_[b.a[k]], c = packing_of_[b.b[k]];
+          const auto it = by_pair.find({std::min(a, c), std::max(a, c)});
+          if (it == by_pair.end())
+            continue;
+          const std::size_t o = it->second;
+          new_bond[o] = long(k);
+          b.state[k] = ob.state[o];
+          if (b.has_failure())
+          {
+            b.tensile_strength[k] = old_tensile[o];
+            b.shear_strength[k] = old_shear[o];
+            b.damage[k] = ob.damage[o];
+            b.kappa_max[k] = ob.kappa_max[o];
+            b.kappa_ultimate[k] = ob.kappa_ultimate[o];
+            b.dissipated[k] = ob.dissipated[o];
+            b.failure_mode[k] = ob.failure_mode[o];
+          }
+        }
+        std::fill(p.coordination.begin(), p.coordination.end(), 0);
+        for (std::size_t k = 0; k < b.size(); ++k)
+          if (dem::is_bonded(b.state[k]))
+            ++p.coordination[b.a[k]], ++p.coordination[b.b[k]];
+        // the crack log in the new numbering (ids are the particles' user ids: ParticleStore::id)
+        std::vector<int> old_index_of_id(op.size(), -1);
+        for (std::size_t i = 0; i < op.size(); ++i)
+          old_index_of_id[std::size_t(op.id[i])] = int(i);
+        for (auto& c : cracks)
+        {
+          if (new_bond[c.bond] < 0)
+            throw std::logic_error("adaptive region: a broken bond is missing after the growth");
+          c.bond = std::size_t(new_bond[c.bond]);
+          c.a = id_of_old[std::size_t(old_index_of_id[std::size_t(c.a)])];
+          c.b = id_of_old[std::size_t(old_index_of_id[std::size_t(c.b)])];
+        }
+        // a load or support must act on the same particles as before
+        for (std::size_t gi = 0; gi < model_.groups.size(); ++gi)
+        {
+          bool acted = false;
+          for (const auto& c : model_.constraints)
+            acted = acted || c.group == int(gi);
+          for (const auto& l : model_.loads)
+            acted = acted || l.group == int(gi);
+          if (acted && model_.groups[gi].members.size() != old.groups[gi].members.size())
+            throw std::runtime_error(
+                "Group " + model_.groups[gi].name + ": it holds a load or support and would gain " +
+                std::to_string(model_.groups[gi].members.size() - old.groups[gi].members.size()) +
+                " particles as the adaptive region grows; select it inside the particle box");
+        }
+      });
+  const NodalField U(node_u, q), V(node_v, q);
+  fe_->set_initial_state(U, V);
+  fe_->continue_from(*old_fe, V);
+  old_fe.reset();
+  old_handshake.reset();
+
+  // 4. the tie's gap at the new interface (as set_initial_state)
+  transfer_.gather(fe_->displacement(), slots_);
+  transfer_.interpolate(slots_, points_);
+  if (root_)
+  {
+    for (std::size_t k = 0; k < transfer_.n_points(); ++k)
+    {
+      const int i = interface_[k];
+      const Vec3 up = model_.particles.position[i] - model_.particles.reference_position[i];
+      for (int c = 0; c < 3; ++c)
+        gap_[3 * k + c] = points_[3 * k + c] - up[c];
+    }
+    solver_->continue_run(time_, std::move(cracks));
+  }
+  event.energy_after = stored_energy_now(nullptr);
+  event.region_cells = adaptive_->n_region_cells();
+  event.cells_added = event.region_cells - cells_before;
+  event.n_particles = n_particles_;
+  event.particles_added = n_particles_ - particles_before;
+  event.n_bonds = root_ ? model_.bonds.size() : 0;
+  event.bonds_added = event.n_bonds - bonds_before;
+  event.time_step = dt_;
+  event.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  growth_events_.push_back(event);
+  return event;
+}
+} // namespace dembridge::coupling
