@@ -1,4 +1,5 @@
 #include "distributed/run_explicit.h"
+#include "dem/solvers/run_stop.h"
 #include "distributed/distributed_solver.h"
 #include <chrono>
 #include <cmath>
@@ -62,7 +63,6 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     if (progress.largest_seen > 0)
       progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
   };
-  const long quasi_static_check = std::max<long>(1, std::min<long>(100, sched.record_interval));
   auto last_progress = start;
   res.stop_reason = "end time";
   bool gathered_all = false;
@@ -70,26 +70,17 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   {
     const long n = solver.steps() + 1;
     const bool at_end_time = solver.time() + 0.5 * model.time_step >= c.run.end_time;
-    const bool record = (n % sched.record_interval == 0) || n == 1 || at_end_time ||
-                        ((c.run.quasi_static_speed > 0 || c.run.equilibrium_ratio > 0) &&
-                         n % quasi_static_check == 0);
+    const bool record = dem::records_step(n, at_end_time, c.run, sched.record_interval);
     solver.step(record);
     if (frequency_group >= 0 && solver.time() >= loads_end)
     {
       ft.push_back(solver.time());
       fu.push_back(solver.group_mean_displacement(frequency_group).dot(dir));
     }
-    bool stop = false;
-    if (at_end_time)
-      stop = true;
-    else if (solver.steps() >= c.run.max_steps)
-      stop = true, res.stop_reason = "step limit";
-    else if (record && c.run.quasi_static_speed > 0 && solver.time() > solver.last_ramp_end() &&
-             solver.time() > loads_end && solver.max_speed() < c.run.quasi_static_speed)
-      stop = true, res.stop_reason = "quasi-static";
-    else if (record && c.run.equilibrium_ratio > 0 && solver.time() > solver.last_ramp_end() &&
-             solver.time() > loads_end && solver.unbalanced_force_ratio() < c.run.equilibrium_ratio)
-      stop = true, res.stop_reason = "equilibrium";
+    const char* reason = dem::stop_reason(solver, c.run, at_end_time, record, loads_end);
+    const bool stop = reason != nullptr;
+    if (stop)
+      res.stop_reason = reason;
     gathered_all = false;
     if (record)
     {

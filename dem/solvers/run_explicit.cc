@@ -1,5 +1,6 @@
 #include "dem/solvers/run_explicit.h"
 #include "dem/core/progress.h"
+#include "dem/solvers/run_stop.h"
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -87,33 +88,23 @@ RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
 
   // State at t = 0: one recording evaluation without advancing is not possible with a
   // leapfrog state, so the first record is after step 1.
-  const long quasi_static_check = std::max<long>(1, std::min<long>(100, sched.record_interval));
   auto last_progress = start;
   res.stop_reason = "end time";
   while (true)
   {
     const long n = solver.steps() + 1;
     const bool at_end_time = solver.time() + 0.5 * model.time_step >= c.run.end_time;
-    const bool record = (n % sched.record_interval == 0) || n == 1 || at_end_time ||
-                        ((c.run.quasi_static_speed > 0 || c.run.equilibrium_ratio > 0) &&
-                         n % quasi_static_check == 0);
+    const bool record = records_step(n, at_end_time, c.run, sched.record_interval);
     solver.step(record);
     if (frequency_group >= 0 && solver.time() >= loads_end)
     {
       ft.push_back(solver.time());
       fu.push_back(solver.group_mean_displacement(frequency_group).dot(dir));
     }
-    bool stop = false;
-    if (at_end_time)
-      stop = true;
-    else if (solver.steps() >= c.run.max_steps)
-      stop = true, res.stop_reason = "step limit";
-    else if (record && c.run.quasi_static_speed > 0 && solver.time() > solver.last_ramp_end() &&
-             solver.time() > loads_end && solver.max_speed() < c.run.quasi_static_speed)
-      stop = true, res.stop_reason = "quasi-static";
-    else if (record && c.run.equilibrium_ratio > 0 && solver.time() > solver.last_ramp_end() &&
-             solver.time() > loads_end && solver.unbalanced_force_ratio() < c.run.equilibrium_ratio)
-      stop = true, res.stop_reason = "equilibrium";
+    const char* reason = stop_reason(solver, c.run, at_end_time, record, loads_end);
+    const bool stop = reason != nullptr;
+    if (stop)
+      res.stop_reason = reason;
     if (record)
     {
       track_energy(solver);
