@@ -1,5 +1,6 @@
 #include "contact_parameters.h"
 #include "dem_parameters.h"
+#include "dem/core/number_list.h"
 #include <algorithm>
 #include <limits>
 
@@ -19,9 +20,7 @@ const List vector3(Double(), 3, 3);
 
 dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
 {
-  const auto v =
-      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(prm.get(key), ','));
-  return {v[0], v[1], v[2]};
+  return dem::parse_vec3(prm.get(key), key);
 }
 } // namespace
 

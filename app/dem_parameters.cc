@@ -2,6 +2,7 @@
 #include "contact_parameters.h"
 #include "damage_parameters.h"
 #include "microstructure_parameters.h"
+#include "dem/core/number_list.h"
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -24,15 +25,12 @@ const List vector3(Double(), 3, 3);
 
 dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
 {
-  const auto v =
-      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(prm.get(key), ','));
-  return {v[0], v[1], v[2]};
+  return dem::parse_vec3(prm.get(key), key);
 }
 
 std::vector<double> get_doubles(ParameterHandler& prm, const std::string& key)
 {
-  return dealii::Utilities::string_to_double(
-      dealii::Utilities::split_string_list(prm.get(key), ','));
+  return dem::parse_numbers(prm.get(key), key);
 }
 } // namespace
 

@@ -1,4 +1,5 @@
 #include "microstructure_parameters.h"
+#include "dem/core/number_list.h"
 #include <sstream>
 
 namespace dembridge::app
@@ -17,9 +18,7 @@ const List vector3(Double(), 3, 3);
 
 dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
 {
-  const auto v =
-      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(prm.get(key), ','));
-  return {v[0], v[1], v[2]};
+  return dem::parse_vec3(prm.get(key), key);
 }
 
 /// The classes a case file names, with the keys each takes over from Bonds or Damage.
@@ -121,8 +120,8 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
   g.c_axis_spread = prm.get_double("c-axis spread");
   g.granular_thickness = prm.get_double("granular layer thickness");
   g.granular_diameter = prm.get_double("granular grain diameter");
-  const auto offsets = dealii::Utilities::string_to_double(
-      dealii::Utilities::split_string_list(prm.get("weak plane offsets"), ','));
+  const auto offsets =
+      dem::parse_numbers(prm.get("weak plane offsets"), "Microstructure/weak plane offsets");
   const double spacing = prm.get_double("weak plane spacing");
   if (!offsets.empty())
     c.weak_planes = dem::WeakPlaneSet{get_vec3(prm, "weak plane normal"), offsets, spacing};

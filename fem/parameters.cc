@@ -1,5 +1,6 @@
 // dembridge::fem — declaration and parsing of the FEM parameter subsections.
 #include "parameters.h"
+#include "dem/core/number_list.h"
 
 #include <cmath>
 #include <sstream>
@@ -115,11 +116,8 @@ std::vector<BoundaryLoad> parse_boundary_loads(const std::string& text, const st
 
 Point<3> parse_point(const std::string& text, const std::string& where)
 {
-  const auto parts = split(text, ',');
-  if (parts.size() != 3)
-    fail(where, "'" + text + "' is not a vector 'X,Y,Z'");
-  return Point<3>(to_double(parts[0], where), to_double(parts[1], where),
-                  to_double(parts[2], where));
+  const dem::Vec3 v = dem::parse_vec3(text, where);
+  return Point<3>(v[0], v[1], v[2]);
 }
 
 void declare_fem_parameters(ParameterHandler& prm)
