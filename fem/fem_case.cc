@@ -4,6 +4,7 @@
 #include "elastic_problem.h"
 #include "explicit_dynamics.h"
 #include "parameters.h"
+#include "reaction_measurement.h"
 
 #include "dem/core/history_file.h"
 #include "dem/core/running_series.h"
@@ -94,28 +95,16 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
     summary[p.deflection_name] = mean;
     summary[p.deflection_name + "_points"] = values;
   }
-  if (!p.reaction_boundary.empty())
+  if (const auto m = measure_reaction(problem, p))
   {
-    const auto id = find_boundary(problem.boundary_names(), p.reaction_boundary,
-                                  "FEM/Measurements/reaction boundary");
-    const Tensor<1, 3> r = problem.reaction(id);
-    summary["reaction_force"] = r * p.reaction_direction;
-    summary["reaction_force_vector"] = {r[0], r[1], r[2]};
-    if (!p.loaded_boundary.empty())
+    summary["reaction_force"] = m->reaction_along;
+    summary["reaction_force_vector"] = {m->reaction[0], m->reaction[1], m->reaction[2]};
+    if (m->has_loaded_boundary)
     {
-      const auto loaded = find_boundary(problem.boundary_names(), p.loaded_boundary,
-                                        "FEM/Measurements/loaded boundary");
-      const auto fixed_means = problem.boundary_means(id);
-      const auto loaded_means = problem.boundary_means(loaded);
-      const Tensor<1, 3> e = p.reaction_direction;
-      const double length = std::abs((loaded_means.centroid - fixed_means.centroid) * e);
-      const double elongation =
-          (loaded_means.mean_displacement - fixed_means.mean_displacement) * e;
-      summary["area"] = fixed_means.area;
-      summary["gauge_length"] = length;
-      summary["elongation"] = elongation;
-      // eq. (64) of the thesis: E = (F / A) (L0 / dL); the reaction opposes the elongation.
-      summary["youngs_modulus"] = -(r * e) / fixed_means.area * length / elongation;
+      summary["area"] = m->area;
+      summary["gauge_length"] = m->gauge_length;
+      summary["elongation"] = m->elongation;
+      summary["youngs_modulus"] = m->youngs_modulus;
     }
   }
   for (const auto& name : p.reaction_boundaries)
