@@ -8,7 +8,7 @@
 #include "fem/fem_case.h"
 #endif
 #ifdef DEMBRIDGE_HAVE_COUPLING
-#include "coupled_parameters.h"
+#include "coupling/coupling_parameters.h"
 #endif
 #include <algorithm>
 #include <filesystem>
@@ -38,7 +38,7 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
   fem::declare_parameters(prm);
 #endif
 #ifdef DEMBRIDGE_HAVE_COUPLING
-  declare_coupling_parameters(prm);
+  coupling::declare_coupling_parameters(prm);
 #endif
 }
 

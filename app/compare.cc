@@ -11,7 +11,6 @@
 #include "memory_guard.h"
 #include "provenance.h"
 #include "verify.h"
-#include "verify_model.h"
 #include "verify_report.h"
 #include <chrono>
 #include <cmath>

@@ -1,4 +1,5 @@
 #include "coupled_run.h"
+#include "fem/reaction_measurement.h"
 #include "coupled_parameters.h"
 #include "coupling/measurements.h"
 #include "crack_output.h"
@@ -576,31 +577,19 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     j["fe_probe_displacements"] = u;
     j["fe_" + c.continuum.deflection_name] = mean;
   }
-  // FE reaction and, with a loaded boundary, E by thesis eq. 64 (as a FEM run: fem_case.cc)
+  // FE reaction and, with a loaded boundary, E by thesis eq. 64 (as a FEM run)
   const auto& fp = c.continuum;
-  if (!fp.reaction_boundary.empty())
+  if (const auto m = fem::measure_reaction(p.continuum(), fp))
   {
-    auto& cont = p.continuum();
-    const auto id = fem::find_boundary(cont.boundary_names(), fp.reaction_boundary,
-                                       "FEM/Measurements/reaction boundary");
-    const dealii::Tensor<1, 3> force = cont.reaction(id);
-    j["reaction_force"] = force * fp.reaction_direction;
-    j["reaction_force_vector"] = {force[0], force[1], force[2]};
-    if (!fp.loaded_boundary.empty())
+    j["reaction_force"] = m->reaction_along;
+    j["reaction_force_vector"] = {m->reaction[0], m->reaction[1], m->reaction[2]};
+    if (m->has_loaded_boundary)
     {
-      const auto loaded = fem::find_boundary(cont.boundary_names(), fp.loaded_boundary,
-                                             "FEM/Measurements/loaded boundary");
-      const auto fixed_means = cont.boundary_means(id);
-      const auto loaded_means = cont.boundary_means(loaded);
-      const dealii::Tensor<1, 3> e = fp.reaction_direction;
-      const double length = std::abs((loaded_means.centroid - fixed_means.centroid) * e);
-      const double elongation =
-          (loaded_means.mean_displacement - fixed_means.mean_displacement) * e;
-      j["area"] = fixed_means.area;
-      j["gauge_length"] = length;
-      j["elongation"] = elongation;
-      j["axial_strain"] = elongation / length;
-      if (elongation == 0)
+      j["area"] = m->area;
+      j["gauge_length"] = m->gauge_length;
+      j["elongation"] = m->elongation;
+      j["axial_strain"] = m->elongation / m->gauge_length;
+      if (m->elongation == 0)
       {
         j["youngs_modulus"] = nullptr;
         add_warning(j,
@@ -611,8 +600,8 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
       }
       else
       {
-        j["youngs_modulus"] = -(force * e) / fixed_means.area * length / elongation;
-        if (force * e == 0)
+        j["youngs_modulus"] = m->youngs_modulus;
+        if (m->reaction_along == 0)
           add_warning(j,
                       "youngs_modulus: 0: the reaction boundary '" + fp.reaction_boundary +
                           "' carries no load along the reaction direction (reaction_force 0)",

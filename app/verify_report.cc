@@ -70,7 +70,7 @@ fig.tight_layout()
 fig.savefig(dst, dpi=120)
 )PY";
 
-std::string num(double v)
+std::string csv_number(double v)
 {
   std::ostringstream s;
   s << std::setprecision(12) << v;
@@ -144,14 +144,15 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
   {
     dem::OutputFile out(csv_tmp); // failures name the file and the reason
     out << "kind,quantity,unit,axis,position,dem,fem,difference,relative_difference\n";
-    auto cell = [](const json& v) { return v.is_number() ? num(v.get<double>()) : std::string(); };
+    auto cell = [](const json& v)
+    { return v.is_number() ? csv_number(v.get<double>()) : std::string(); };
     for (const auto* rows : {&report.scalars, &report.layers})
       for (const auto& row : *rows)
       {
         const json j = row_json(row);
         const bool layer = row.position.has_value();
         out << (layer ? "layer" : "scalar") << ',' << row.key << ',' << row.unit << ','
-            << (layer ? report.layer_axis : "") << ',' << (layer ? num(*row.position) : "") << ','
+            << (layer ? report.layer_axis : "") << ',' << (layer ? csv_number(*row.position) : "") << ','
             << cell(j["dem"]) << ',' << cell(j["fem"]) << ',' << cell(j["difference"]) << ','
             << cell(j["relative_difference"]) << '\n';
       }
@@ -193,5 +194,11 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
                       log.filename().string();
   }
   return status;
+}
+std::string num(double v)
+{
+  std::ostringstream s;
+  s << std::setprecision(17) << v;
+  return s.str();
 }
 } // namespace dembridge::app::verify_detail

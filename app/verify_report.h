@@ -43,6 +43,9 @@ std::string python();
 /// @p s single-quoted for a POSIX shell.
 std::string shell_quote(const std::string& s);
 
+/// Round-trip text of a double (17 significant digits).
+std::string num(double v);
+
 /// Writes @p j to dir/name through a temporary file and a rename.
 void write_json_atomically(const std::filesystem::path& dir, const std::string& name,
                            const nlohmann::json& j);
