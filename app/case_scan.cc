@@ -32,17 +32,17 @@ std::string join(const std::vector<std::string>& path)
 }
 } // namespace
 
-CaseScan scan_case_text(const std::string& text, const std::string& name)
+void for_each_prm_line(const std::string& text, const std::function<void(const PrmLine&)>& visit)
 {
-  CaseScan scan;
   std::istringstream in(text);
   std::vector<std::string> path;
-  std::map<std::string, int> first_line; // "key:A/B/x" or "sub:A/B" -> line
   std::string line;
   int lineno = 0;
   while (std::getline(in, line))
   {
-    const int first = ++lineno;
+    PrmLine l;
+    l.line = ++lineno;
+    l.text = line;
     // deal.II joins a line ending in '\' with the next one (before comments are removed)
     while (!trim(line).empty() && trim(line).back() == '\\')
     {
@@ -50,6 +50,7 @@ CaseScan scan_case_text(const std::string& text, const std::string& name)
       if (!std::getline(in, next))
         break;
       ++lineno;
+      l.text += "\n" + next;
       line = trim(line);
       line.pop_back();
       line += " " + next;
@@ -59,37 +60,96 @@ CaseScan scan_case_text(const std::string& text, const std::string& name)
     const std::string t = collapse(line);
     if (t.rfind("subsection ", 0) == 0)
     {
+      l.kind = PrmLine::Kind::subsection;
       path.push_back(collapse(t.substr(11)));
-      const std::string key = "sub:" + join(path);
-      if (const auto seen = first_line.find(key); seen != first_line.end())
-        throw std::runtime_error(name + ":" + std::to_string(first) + ": subsection '" +
-                                 join(path) + "' is opened twice (first on line " +
-                                 std::to_string(seen->second) +
-                                 "); deal.II would merge the two, the later values winning");
-      first_line[key] = first;
-      scan.subsections.insert(join(path));
+      l.path = path;
     }
     else if (t == "end")
     {
+      l.kind = PrmLine::Kind::end;
+      l.path = path;
       if (!path.empty())
         path.pop_back();
     }
     else if (t.rfind("set ", 0) == 0)
     {
-      ++scan.entries;
-      const auto eq = t.find('=');
-      if (eq == std::string::npos)
-        continue; // deal.II reports the malformed line
-      auto full = path;
-      full.push_back(collapse(t.substr(4, eq - 4)));
-      const std::string key = "key:" + join(full);
-      if (const auto seen = first_line.find(key); seen != first_line.end())
-        throw std::runtime_error(name + ":" + std::to_string(first) + ": " + join(full) +
-                                 " is set twice (first on line " + std::to_string(seen->second) +
-                                 "); only one value can hold");
-      first_line[key] = first;
+      l.kind = PrmLine::Kind::set;
+      l.path = path;
+      const std::string kept = trim(line);
+      const auto eq = kept.find('=');
+      l.well_formed = eq != std::string::npos;
+      if (l.well_formed)
+      {
+        l.key = collapse(kept.substr(4, eq - 4));
+        l.value = trim(kept.substr(eq + 1));
+      }
     }
+    else
+      l.path = path;
+    visit(l);
   }
+}
+
+std::string rewrite_prm_lines(
+    const std::string& text,
+    const std::function<std::optional<std::string>(const PrmLine&)>& rewrite)
+{
+  std::ostringstream out;
+  for_each_prm_line(text,
+                    [&](const PrmLine& l)
+                    {
+                      if (const auto kept = rewrite(l))
+                        out << *kept << '\n';
+                    });
+  return out.str();
+}
+
+std::map<std::string, std::string> prm_entries(const std::string& text)
+{
+  std::map<std::string, std::string> out;
+  for_each_prm_line(text,
+                    [&](const PrmLine& l)
+                    {
+                      if (l.kind == PrmLine::Kind::set && l.well_formed)
+                        out[join(l.path) + (l.path.empty() ? "" : "/") + l.key] = l.value;
+                    });
+  return out;
+}
+
+CaseScan scan_case_text(const std::string& text, const std::string& name)
+{
+  CaseScan scan;
+  std::map<std::string, int> first_line; // "key:A/B/x" or "sub:A/B" -> line
+  for_each_prm_line(
+      text,
+      [&](const PrmLine& l)
+      {
+        if (l.kind == PrmLine::Kind::subsection)
+        {
+          const std::string key = "sub:" + join(l.path);
+          if (const auto seen = first_line.find(key); seen != first_line.end())
+            throw std::runtime_error(name + ":" + std::to_string(l.line) + ": subsection '" +
+                                     join(l.path) + "' is opened twice (first on line " +
+                                     std::to_string(seen->second) +
+                                     "); deal.II would merge the two, the later values winning");
+          first_line[key] = l.line;
+          scan.subsections.insert(join(l.path));
+        }
+        else if (l.kind == PrmLine::Kind::set)
+        {
+          ++scan.entries;
+          if (!l.well_formed)
+            return; // deal.II reports the malformed line
+          auto full = l.path;
+          full.push_back(l.key);
+          const std::string key = "key:" + join(full);
+          if (const auto seen = first_line.find(key); seen != first_line.end())
+            throw std::runtime_error(name + ":" + std::to_string(l.line) + ": " + join(full) +
+                                     " is set twice (first on line " +
+                                     std::to_string(seen->second) + "); only one value can hold");
+          first_line[key] = l.line;
+        }
+      });
   if (scan.entries == 0)
     throw std::runtime_error(name + ": the case file sets no parameter (it would run every "
                                     "default); see dembridge print-parameters");

@@ -1,4 +1,5 @@
 #include "checkpoint.h"
+#include "case_scan.h"
 #include "dem/core/fsync_path.h"
 #include "hdf5_archive.h"
 #include "provenance.h"
@@ -158,63 +159,26 @@ void verify_group(hid_t group, const std::string& path, const std::string& name,
   }
 }
 
-/// "Section/key" -> value of a short PRM text.
-std::map<std::string, std::string> entries(const std::string& text)
-{
-  std::map<std::string, std::string> out;
-  std::vector<std::string> sections;
-  std::istringstream in(text);
-  auto trim = [](const std::string& s)
-  {
-    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-  };
-  for (std::string line; std::getline(in, line);)
-  {
-    const std::string t = trim(line);
-    if (t.rfind("subsection ", 0) == 0)
-      sections.push_back(trim(t.substr(11)));
-    else if (t == "end" && !sections.empty())
-      sections.pop_back();
-    else if (t.rfind("set ", 0) == 0 && t.find('=') != std::string::npos)
-    {
-      std::string key;
-      for (const auto& s : sections)
-        key += s + "/";
-      key += trim(t.substr(4, t.find('=') - 4));
-      out[key] = trim(t.substr(t.find('=') + 1));
-    }
-  }
-  return out;
-}
 } // namespace
 
 std::string checkpoint_case_text(const dealii::ParameterHandler& prm, const fs::path& case_dir)
 {
-  const std::string full = parameters_file_text(prm, case_dir, "");
-  std::istringstream in(full);
-  std::ostringstream out;
-  std::vector<std::string> sections;
-  for (std::string line; std::getline(in, line);)
+  // what may change between the interrupted run and its resume: how often checkpoints are
+  // written and the thread count (the results do not depend on it)
+  auto may_change = [](const PrmLine& l)
   {
-    const auto b = line.find_first_not_of(" \t");
-    const std::string t = b == std::string::npos ? "" : line.substr(b);
-    if (t.rfind("subsection ", 0) == 0)
-      sections.push_back(t.substr(11));
-    else if (t == "end" && !sections.empty())
-      sections.pop_back();
-    else if (t.rfind("set ", 0) == 0 && sections.size() == 1)
-    {
-      const std::string key = t.substr(4, t.find('=') - 4);
-      auto is = [&](const char* s, const char* k)
-      { return sections[0] == s && key.rfind(k, 0) == 0; };
-      if (is("Output", "checkpoint interval ") || is("Output", "checkpoint wall interval ") ||
-          is("Simulation", "threads "))
-        continue;
-    }
-    out << line << '\n';
-  }
-  return out.str();
+    return l.kind == PrmLine::Kind::set && l.path.size() == 1 &&
+           ((l.path[0] == "Output" &&
+             (l.key == "checkpoint interval" || l.key == "checkpoint wall interval")) ||
+            (l.path[0] == "Simulation" && l.key == "threads"));
+  };
+  return rewrite_prm_lines(parameters_file_text(prm, case_dir, ""),
+                           [&](const PrmLine& l) -> std::optional<std::string>
+                           {
+                             if (may_change(l))
+                               return std::nullopt;
+                             return l.text;
+                           });
 }
 
 namespace
@@ -376,7 +340,7 @@ void check_same_case(const CheckpointHeader& header, const std::string& case_tex
 {
   if (header.case_text == case_text)
     return;
-  const auto there = entries(header.case_text), here = entries(case_text);
+  const auto there = prm_entries(header.case_text), here = prm_entries(case_text);
   std::string what;
   int listed = 0;
   auto add = [&](const std::string& key, const std::string& a, const std::string& b)

@@ -1,4 +1,5 @@
 #include "provenance.h"
+#include "case_scan.h"
 #include "dem/core/output_file.h"
 #include "version.h"
 #include <algorithm>
@@ -17,12 +18,6 @@ namespace
 {
 std::vector<std::string> command_line_words;
 
-std::string trim(const std::string& s)
-{
-  const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
 /// deal.II's short PRM text: "set key = value", "subsection Name", "end"; every entry.
 std::string short_prm(const dealii::ParameterHandler& prm)
 {
@@ -40,28 +35,16 @@ bool is_path_entry(const std::vector<std::string>& sections, const std::string& 
          (sections == coupling && (key == "tensor file" || key == "particle region file"));
 }
 
-/// Visits every "set" line of a short PRM text with its subsection path; @p line returns the
-/// text that replaces the line (or the line itself).
+/// @p text with every set line replaced by what @p visit(path, key, value, line) returns.
 template <class Visit> std::string for_each_entry(const std::string& text, Visit visit)
 {
-  std::istringstream in(text);
-  std::ostringstream out;
-  std::vector<std::string> sections;
-  for (std::string line; std::getline(in, line);)
-  {
-    const std::string t = trim(line);
-    if (t.rfind("subsection ", 0) == 0)
-      sections.push_back(trim(t.substr(11)));
-    else if (t == "end" && !sections.empty())
-      sections.pop_back();
-    else if (t.rfind("set ", 0) == 0 && t.find('=') != std::string::npos)
-    {
-      const auto eq = t.find('=');
-      line = visit(sections, trim(t.substr(4, eq - 4)), trim(t.substr(eq + 1)), line);
-    }
-    out << line << '\n';
-  }
-  return out.str();
+  return rewrite_prm_lines(text,
+                           [&](const PrmLine& l) -> std::optional<std::string>
+                           {
+                             if (l.kind != PrmLine::Kind::set || !l.well_formed)
+                               return l.text;
+                             return visit(l.path, l.key, l.value, l.text);
+                           });
 }
 } // namespace
 
