@@ -1,5 +1,5 @@
 #pragma once
-// dembridge compare COUPLED_CASE.prm (issue 10): the coupled run against full DEM and a full
+// dembridge compare COUPLED_CASE.prm: the coupled run against full DEM and a full
 // (elastic) FE model of the same geometry, supports, load and packing
 // (coupling/full_models.h derives the two). The runs go into the output folder D:
 //   D/coupled/    the coupled run of the case (`dembridge run`, its own process)
