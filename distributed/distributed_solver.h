@@ -15,6 +15,7 @@
 // particles' state into rank 0's model, and the summed figures and the crack log into that
 // solver, so that a run's observer (history, ParaView files) and measurements read them as on
 // one rank.
+#include "dem/contacts/contact_forces.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "distributed/distributed_particles.h"
@@ -70,6 +71,9 @@ public:
 private:
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
   void migrate();
+  /// Collective: rank 0's model's contacts take the figures of the step at @p time summed over
+  /// the ranks.
+  void reduce_contacts(double time);
 
   dem::Model& model_;
   MPI_Comm comm_;
@@ -81,6 +85,12 @@ private:
   DistributedParticles particles_;
   std::vector<std::size_t> group_sizes_; ///< members over all ranks
   std::unique_ptr<dem::ExplicitSolver> local_;
+  /// the rank's contacts (a copy of the model's, stepped by the local solvers one after the
+  /// other: its energy sums and wall forces run on), the model's (rank 0: reports the sums),
+  /// and the contact histories that travel at a migration
+  std::unique_ptr<dem::ContactForces> contacts_;
+  dem::ContactForces* report_contacts_ = nullptr;
+  std::vector<double> contact_history_, contact_figures_, contact_figures_all_;
   dem::EnergyBalance energy_;
   double max_speed_ = 0, unbalanced_ratio_ = 0;
   dem::ExplicitSolver::UnbalancedParts unbalanced_;
