@@ -29,7 +29,8 @@
 //    and the floor's force to 1e-9 of its largest value (a contact force is k delta with delta
 //    a micrometre: positions that differ by 1e-14 m, sums taken in another order, move it by
 //    1e-8 of itself);
-//  - every particle's final position agrees to 1e-10 of the distance flown.
+//  - every particle's final position agrees to 1e-10 of the distance flown;
+//  - background cells narrower than 1.25 contact cut-offs (2 R) are refused.
 // Exit code 0 on success; a failed check prints one line on rank 0 and returns 1.
 #include "dem/bonds/bonding.h"
 #include "dem/contacts/contact_forces.h"
@@ -426,6 +427,23 @@ int colliding_clusters_check(MPI_Comm comm)
   // cells 1.5 times the contact cut-off (2 R) wide over the whole run: many migrations
   const distributed::BackgroundGrid grid = distributed::make_background_grid(
       Vec3(-0.02, -0.02, -0.02), Vec3(0.1, 0.04, 0.07), 1.5 * 2 * 2.5e-3);
+  {
+    // a ghost layer narrower than 1.25 contact cut-offs is refused on every rank
+    dem::Model narrow_model = colliding_clusters();
+    const distributed::BackgroundGrid narrow = distributed::make_background_grid(
+        Vec3(-0.02, -0.02, -0.02), Vec3(0.1, 0.04, 0.07), 1.2 * 2 * 2.5e-3);
+    std::string refused;
+    try
+    {
+      distributed::DistributedSolver(narrow_model, {narrow_model.time_step}, comm, &narrow);
+    }
+    catch (const dem::InputError& e)
+    {
+      refused = e.what();
+    }
+    check(refused.find("not wider than 1.25 times the contact cut-off") != std::string::npos,
+          "background cells narrower than 1.25 contact cut-offs refused: '" + refused + "'");
+  }
   dem::ExplicitSolver one(serial.particles, serial.bonds, serial.groups, serial.constraints,
                           serial.loads, {serial.time_step});
   auto& one_contacts = *dynamic_cast<dem::ContactForces*>(serial.contributions[0].get());
