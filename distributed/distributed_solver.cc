@@ -165,8 +165,9 @@ void DistributedSolver::step(bool record)
   t0 = clock::now();
   particles_.update_ghosts();
   timings_.ghosts += since(t0);
-  // the platens' peak is looked for at every step, as on one rank
-  if (contacts_ && (record || contacts_->platens().enabled))
+  last_step_time_ = step_time;
+  // the platens' peak is looked for at every step, as on one rank (else at records: reduce)
+  if (contacts_ && contacts_->platens().enabled)
     reduce_contacts(step_time);
   // The motion check is a reduction over the ranks: every few steps. A particle rebuilds at
   // half a cell of travel and is lost only after a whole cell; the other half takes far more
@@ -233,6 +234,8 @@ void DistributedSolver::reduce()
                           : std::numeric_limits<double>::infinity();
   n_broken_ = long(sum[figure::n_cracks]);
   broken_by_mode_ = {{long(sum[figure::broken_tension]), long(sum[figure::broken_shear])}};
+  if (contacts_ && !contacts_->platens().enabled)
+    reduce_contacts(last_step_time_);
 }
 
 void DistributedSolver::reduce_contacts(double time)

@@ -36,8 +36,8 @@ public:
   /// when due (or a throw on every rank when some rank became unstable); on record steps the
   /// figures summed over the ranks.
   void step(bool record = false);
-  /// Collective: sums the figures of the last record (and the energy accumulators as they
-  /// stand) over the ranks; step() does this on record steps.
+  /// Collective: sums the figures of the last record (and the energy accumulators and the
+  /// contact figures as they stand) over the ranks; step() does this on record steps.
   void reduce();
   /// Collective: rank 0's model takes the particles' state (every particle with @p all, else
   /// those in a group) and with @p all the state of the bonds that are no longer intact; rank
@@ -91,6 +91,7 @@ private:
   std::unique_ptr<dem::ContactForces> contacts_;
   dem::ContactForces* report_contacts_ = nullptr;
   std::vector<double> contact_history_, contact_figures_, contact_figures_all_;
+  double last_step_time_ = 0; ///< t_n of the last step (its contact figures are at t_n)
   dem::EnergyBalance energy_;
   double max_speed_ = 0, unbalanced_ratio_ = 0;
   dem::ExplicitSolver::UnbalancedParts unbalanced_;
