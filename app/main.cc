@@ -5,26 +5,26 @@
 //   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
 //   dembridge compare COUPLED_CASE.prm [--set ...] [--output-dir DIR]   (comparison.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/.
-#include "case_file.h"
-#include "checkpoint.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/input/case_file.h"
+#include "app/job/mpi_job.h"
+#include "app/job/provenance.h"
+#include "app/job/version.h"
+#include "app/output/output_folder.h"
+#include "app/output/result_warnings.h"
+#include "app/runs/dem_run.h"
+#include "app/runs/memory_guard.h"
+#include "app/studies/elasticity_command.h"
+#include "app/studies/verify.h"
 #include "dem/core/output_file.h"
 #include "dem/core/progress.h"
 #include "dem/core/types.h"
-#include "dem_run.h"
-#include "elasticity_command.h"
-#include "memory_guard.h"
-#include "mpi_job.h"
-#include "output_folder.h"
-#include "provenance.h"
-#include "result_warnings.h"
-#include "verify.h"
-#include "version.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"
 #endif
 #ifdef DEMBRIDGE_HAVE_COUPLING
-#include "compare.h"
-#include "coupled_run.h"
+#include "app/runs/coupled_run.h"
+#include "app/studies/compare.h"
 #endif
 #include <CLI/CLI.hpp>
 #include <chrono>

@@ -4,7 +4,7 @@ sea-ice beam (bench/coupled_notched_beam.prm: particles in the middle 0.2 m, r =
 softening bonds) runs the coupled beam, the full-DEM beam of the same packing (20,200 spheres)
 and the elastic FE model one after the other in the same benchmark run, one thread each.
 Reports wall time, peak memory, peak load, limit load (the peak before an unstable crack's snap:
-app/compare.cc) and fracture energy of each and the coupled run's
+app/studies/compare.cc) and fracture energy of each and the coupled run's
 speed-up; copies comparison.json and comparison.png to bench/results/coupled_damage.{json,png}.
 
 The same comparison on a beam twice as long (bench/coupled_notched_beam_4m.prm: 40,070 spheres

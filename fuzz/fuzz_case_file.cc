@@ -1,8 +1,8 @@
 // libFuzzer target: the case-file reader on any text: the scan for empty files and repeated
-// keys (app/case_scan.h), a text opening with '{' as JSON (app/case_json.h), deal.II's two-pass
-// ParameterHandler parse (app/case_file.h), and the translation of every mode the file can
-// name: a DEM case (app/dem_parameters.h) with its size estimate (the memory guard's), the FE
-// parameters, a coupled case with its run settings (app/coupled_parameters.h), and the output
+// keys (app/input/case_scan.h), a text opening with '{' as JSON (app/input/case_json.h), deal.II's two-pass
+// ParameterHandler parse (app/input/case_file.h), and the translation of every mode the file can
+// name: a DEM case (app/input/dem_parameters.h) with its size estimate (the memory guard's), the FE
+// parameters, a coupled case with its run settings (app/input/coupled_parameters.h), and the output
 // settings. Tiny lattice and row cases (estimate below 200 particles) are also built into a
 // model, so that the builder's own checks are reached; larger builds are left to the bad-input
 // tests: under AddressSanitizer a 2,000-particle build took about 0.15 s, which kept this target
@@ -10,12 +10,12 @@
 // Input errors (dem::InputError, std::runtime_error from the reader, deal.II's ExceptionBase) are
 // the expected outcome; crashes, sanitizer reports, other exceptions, hangs and memory beyond
 // libFuzzer's limit are findings. Nothing is written: `save file` is cleared.
-#include "case_file.h"
+#include "app/input/case_file.h"
+#include "app/input/dem_parameters.h"
 #include "dem/model/model.h"
 #include "dem/model/size_estimate.h"
-#include "dem_parameters.h"
 #ifdef DEMBRIDGE_HAVE_FEM
-#include "coupled_parameters.h"
+#include "app/input/coupled_parameters.h"
 #include "fem/parameters.h"
 #endif
 #include <cstddef>
@@ -38,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try
   {
-    // a text that opens with '{' is read as a JSON case (app/case_json.h)
+    // a text that opens with '{' is read as a JSON case (app/input/case_json.h)
     const auto first = text.find_first_not_of(" \t\r\n");
     const bool json = first != std::string::npos && text[first] == '{';
     auto prm = app::read_case_text(text, json ? "fuzz.json" : "fuzz.prm", {});

@@ -1,5 +1,5 @@
 #pragma once
-// history.csv of a run that may checkpoint (app/checkpoint.h): a checkpoint records how many bytes
+// history.csv of a run that may checkpoint (app/checkpoint/checkpoint.h): a checkpoint records how many bytes
 // of it were written, flushed to the disk first, not its text, so that a checkpoint stays the same
 // size however long the run has been (one row per step would make each checkpoint, and the run's
 // I/O, grow without bound). A resumed run cuts the file back to the checkpoint's length and

@@ -1,5 +1,5 @@
 #pragma once
-// The state of a run as named arrays, for checkpoints (app/checkpoint.h writes them to HDF5,
+// The state of a run as named arrays, for checkpoints (app/checkpoint/checkpoint.h writes them to HDF5,
 // docs/checkpoint.md lists them). Every class that holds run state has one visit function that
 // names its fields; the same function saves (the archive reads the references) and restores
 // (the archive writes into them), so saving and restoring cannot drift apart.

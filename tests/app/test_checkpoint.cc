@@ -7,7 +7,7 @@
 // random damage anywhere in the file is refused or (bytes nothing reads) changes nothing.
 // Beside it: a resumed run's rate and ETA (dem/core/progress.h), the history file a resume
 // needs, and write errors that name the file and the system's reason (dem/core/output_file.h).
-#include "app/checkpoint.h"
+#include "app/checkpoint/checkpoint.h"
 #include "dem/core/byte_archive.h"
 #include "dem/core/history_file.h"
 #include "dem/core/output_file.h"

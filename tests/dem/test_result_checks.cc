@@ -1,5 +1,5 @@
 // The figures behind the warnings and refusals of results that would look complete when they are
-// not (app/result_warnings.h), on configurations whose answers are known by construction:
+// not (app/output/result_warnings.h), on configurations whose answers are known by construction:
 //  - bond_coverage (dem/model/bond_coverage.h): the multiplier that bonds the closest pair and
 //    the one that bonds every particle to its nearest neighbour, |x_a - x_b| / (R_a + R_b);
 //  - largest_rotation (dem/measurements/measurements.h): of a particle and of a bond's axis;

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Simulation/static linear solver in a run (app/dem_run.cc): the thesis compression test on
+# Simulation/static linear solver in a run (app/runs/dem_run.cc): the thesis compression test on
 # HCP (examples/compression_hcp.prm) with gamg and with cg gives the same Young's modulus to
 # 1e-6, and summary.json names the solver each used.
 #   linear_solver_choice.sh DEMBRIDGE CHECK_SUMMARY CASE.prm OUTPUT_DIR

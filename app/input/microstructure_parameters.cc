@@ -1,0 +1,184 @@
+#include "app/input/microstructure_parameters.h"
+#include <sstream>
+
+namespace dembridge::app
+{
+using dealii::ParameterHandler;
+using dealii::Patterns::Anything;
+using dealii::Patterns::Double;
+using dealii::Patterns::Integer;
+using dealii::Patterns::List;
+using dealii::Patterns::Selection;
+namespace dem = dembridge::dem;
+
+namespace
+{
+const List vector3(Double(), 3, 3);
+
+dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
+{
+  const auto v =
+      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(prm.get(key), ','));
+  return {v[0], v[1], v[2]};
+}
+
+/// The classes a case file names, with the keys each takes over from Bonds or Damage.
+const char* const class_sections[] = {"Bond class grain_boundary", "Bond class weak_plane"};
+
+/// @p key's number, or @p fallback when it is empty.
+double number_or(ParameterHandler& prm, const std::string& section, const std::string& key,
+                 double fallback, bool& set)
+{
+  const std::string text = prm.get(key);
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    return fallback;
+  set = true;
+  try
+  {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (text.find_first_not_of(" \t", used) == std::string::npos)
+      return v;
+  }
+  catch (const std::exception&)
+  {
+  }
+  throw dem::InputError(section + "/" + key + ": '" + text +
+                        "' is not a number (leave it empty for the Bonds or Damage value)");
+}
+} // namespace
+
+void declare_microstructure_parameters(ParameterHandler& prm)
+{
+  prm.enter_subsection("Microstructure");
+  prm.declare_entry("grains", "none", Selection("none|columnar"),
+                    "none: no grains; columnar: columns from a 2-D Voronoi tessellation of seeds "
+                    "on a jittered hexagonal lattice, extruded along the column axis; a particle "
+                    "belongs to the column of the seed nearest its centre in the plane.");
+  prm.declare_entry("column axis", "z", Selection("x|y|z"), "Axis of the columns.");
+  prm.declare_entry("column diameter", "0", Double(0),
+                    "Mean column diameter D (m): each seed owns on average the area pi D^2 / 4. "
+                    "At least two particle diameters, at most the specimen's width.");
+  prm.declare_entry("column jitter", "0.5", Double(0, 1),
+                    "Seed offsets, uniform in a disc of this fraction of the lattice spacing: 0 "
+                    "gives identical hexagonal columns; the coefficient of variation of the "
+                    "column diameters is about 0.065 at 0.3, 0.11 at 0.5, 0.19 at 1.");
+  prm.declare_entry("seed", "1", Integer(0), "Seed of the seed offsets and c-axes.");
+  prm.declare_entry("c-axis", "random", Selection("random|aligned"),
+                    "c-axes of the columns, in the plane across them: at a uniform random angle, "
+                    "or aligned with 'c-axis direction' within 'c-axis spread'.");
+  prm.declare_entry("c-axis direction", "1, 0, 0", vector3,
+                    "Aligned c-axes: this direction projected into the plane across the columns.");
+  prm.declare_entry("c-axis spread", "0", Double(0, 180),
+                    "Aligned c-axes: standard deviation of their angle (degrees).");
+  prm.declare_entry("granular layer thickness", "0", Double(0),
+                    "A top layer of granular ice (m; at the upper end of the column axis) with "
+                    "equiaxed grains instead of columns; 0: none.");
+  prm.declare_entry("granular grain diameter", "0", Double(0),
+                    "Mean diameter of the granular layer's grains (m, equivalent sphere).");
+  prm.declare_entry("weak plane normal", "1, 0, 0", vector3, "Normal of the weak planes.");
+  prm.declare_entry("weak plane offsets", "", List(Double(), 0),
+                    "Weak planes normal . x = offset (m, the normal made unit); empty: none. A "
+                    "bond whose axis crosses one is a weak_plane bond.");
+  prm.declare_entry("weak plane spacing", "0", Double(0),
+                    "Repeats each weak plane every spacing (m) along the normal (a parallel "
+                    "set); 0: each plane once.");
+  prm.leave_subsection();
+  for (const char* section : class_sections)
+  {
+    prm.enter_subsection(section);
+    prm.declare_entry("model", "", Anything(),
+                      "Bond model of the class's bonds (as Bonds/model); empty: the Bonds value.");
+    for (const char* key : {"youngs modulus", "poisson ratio", "radius multiplier",
+                            "stiffness ratio", "normal stiffness per area"})
+      prm.declare_entry(key, "", Anything(),
+                        std::string("As Bonds/") + key +
+                            ", for this class; empty: the Bonds value.");
+    for (const char* key : {"tensile strength", "shear strength", "cohesion"})
+      prm.declare_entry(key, "", Anything(),
+                        std::string("As Damage/") + key +
+                            ", for this class (mean; the scatter is Damage's); empty: the Damage "
+                            "value. The failure law, friction angle, moment factor and fracture "
+                            "energies are the specimen's (Damage).");
+    prm.leave_subsection();
+  }
+}
+
+dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
+                                                          const dem::BondMaterial& material,
+                                                          const dem::DamageConfig& damage)
+{
+  dem::MicrostructureConfig c;
+  prm.enter_subsection("Microstructure");
+  auto& g = c.grains;
+  g.enabled = prm.get("grains") == "columnar";
+  g.axis = prm.get("column axis")[0] - 'x';
+  g.diameter = prm.get_double("column diameter");
+  g.jitter = prm.get_double("column jitter");
+  g.seed = static_cast<unsigned long>(prm.get_integer("seed"));
+  g.c_axis_aligned = prm.get("c-axis") == "aligned";
+  g.c_axis_direction = get_vec3(prm, "c-axis direction");
+  g.c_axis_spread = prm.get_double("c-axis spread");
+  g.granular_thickness = prm.get_double("granular layer thickness");
+  g.granular_diameter = prm.get_double("granular grain diameter");
+  const auto offsets = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("weak plane offsets"), ','));
+  const double spacing = prm.get_double("weak plane spacing");
+  if (!offsets.empty())
+    c.weak_planes = dem::WeakPlaneSet{get_vec3(prm, "weak plane normal"), offsets, spacing};
+  else if (spacing > 0)
+    throw dem::InputError("Microstructure/weak plane spacing: a spacing without 'weak plane "
+                          "offsets' gives no plane (set at least one offset)");
+  prm.leave_subsection();
+  g.validate();
+
+  const bool has_class[] = {g.enabled, c.weak_planes.has_value()};
+  const char* const needs[] = {"Microstructure/grains = columnar", "Microstructure/weak plane "
+                                                                   "offsets"};
+  for (int k = 0; k < 2; ++k)
+  {
+    const std::string section = class_sections[k];
+    prm.enter_subsection(section);
+    dem::BondClassConfig cls = dem::BondClassConfig::of_specimen(material, damage);
+    bool set = false;
+    std::string first_set;
+    auto value = [&](const char* key, double fallback)
+    {
+      const bool before = set;
+      const double v = number_or(prm, section, key, fallback, set);
+      if (set && !before)
+        first_set = key;
+      return v;
+    };
+    if (const std::string model = prm.get("model");
+        model.find_first_not_of(" \t") != std::string::npos)
+    {
+      try
+      {
+        cls.material.model = dem::bond_model_from_name(model);
+      }
+      catch (const dem::InputError& e)
+      {
+        throw dem::InputError(section + "/model: " + e.what());
+      }
+      set = true, first_set = "model";
+    }
+    auto& m = cls.material;
+    m.youngs_modulus = value("youngs modulus", m.youngs_modulus);
+    m.poisson_ratio = value("poisson ratio", m.poisson_ratio);
+    m.radius_multiplier = value("radius multiplier", m.radius_multiplier);
+    m.stiffness_ratio = value("stiffness ratio", m.stiffness_ratio);
+    m.normal_stiffness_per_area = value("normal stiffness per area", m.normal_stiffness_per_area);
+    cls.tensile_strength = value("tensile strength", cls.tensile_strength);
+    cls.shear_strength = value("shear strength", cls.shear_strength);
+    cls.cohesion = value("cohesion", cls.cohesion);
+    prm.leave_subsection();
+    if (set && !has_class[k])
+      throw dem::InputError(section + "/" + first_set + ": set, but the case has no such bonds (" +
+                            needs[k] + " makes them)");
+    if (set)
+      (k == 0 ? c.grain_boundary : c.weak_plane) = cls;
+  }
+  return c;
+}
+} // namespace dembridge::app

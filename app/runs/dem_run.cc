@@ -1,0 +1,236 @@
+#include "app/runs/dem_run.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/input/dem_parameters.h"
+#include "app/output/contact_output.h"
+#include "app/output/crack_output.h"
+#include "app/output/dem_figures.h"
+#include "app/runs/dem_observer.h"
+#include "app/runs/dem_run_ranks.h"
+#include "app/runs/dem_static_run.h"
+#include "dem/measurements/particle_stress.h"
+#include "dem/solvers/run_explicit.h"
+#include "dem/solvers/static_solver.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/bond_network_solver.h"
+#endif
+#include "app/output/result_warnings.h"
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+namespace dembridge::app
+{
+namespace
+{
+/// Simulation/static linear solver: auto = PETSc's GAMG from 150 k unknowns (where it starts to
+/// beat Jacobi CG, bench/RESULTS_STATIC.md), gamg = always, cg = never.
+dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
+{
+  dem::StaticSettings base;
+  const std::string linear = prm.get({"Simulation"}, "static linear solver");
+#ifdef DEMBRIDGE_HAVE_FEM
+  if (linear != "cg")
+    base.iterative_solver = fem::gamg_iterative_solver();
+  base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
+#else
+  if (linear == "gamg")
+    throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
+                          "dembridge was built without the fem layer (use auto or cg)");
+#endif
+  return base;
+}
+
+/// A static run in load steps (dem_static_run.h): its deflection and the solver's figures.
+dem::RunResult run_static_case(dealii::ParameterHandler& prm, dem::Model& model,
+                               const dem::CaseConfig& config, const OutputSettings& out,
+                               const std::filesystem::path& dir, nlohmann::json& j)
+{
+  const StaticRun run = run_static_load_steps(model, config, out, dir, static_solver_settings(prm));
+  const dem::StaticResult& st = run.last;
+  dem::RunResult r;
+  r.stop_reason = "static";
+  r.wall_seconds = run.seconds;
+  j["load_steps"] = run.load_steps;
+  if (!config.measure.deflection_group.empty())
+  {
+    const auto& g = model.groups[model.group_index(config.measure.deflection_group,
+                                                   "Measurements/deflection group")];
+    r.deflection_vector = dem::mean_displacement(model.particles, g);
+    r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
+  }
+  add_static_geometry(j, model);
+  add_bond_class_summary(j, model.particles, model.bonds);
+  j["solver"] = {{"type", "static"},
+                 {"method", st.method},
+                 {"iterations", st.iterations},
+                 {"residual", st.residual},
+                 {"n_free_dofs", st.n_free_dofs},
+                 {"held_unbonded_particles", st.held_unbonded},
+                 {"assembly_seconds", st.assembly_seconds},
+                 {"solve_seconds", st.solve_seconds}};
+  return r;
+}
+
+/// What an explicit run leaves for the figures measured on its final state.
+struct ExplicitCaseRun
+{
+  dem::RunResult result;
+  LoadHistory history;
+  std::vector<dem::CrackEvent> cracks;
+};
+
+/// An explicit run (on every MPI rank of the job): history.csv, snapshots, checkpoints, and its
+/// cracks, kinetic energy, energy balance and contact figures.
+ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& config,
+                                  const OutputSettings& out, const std::filesystem::path& dir,
+                                  const CheckpointSettings& checkpoint, nlohmann::json& j)
+{
+  const bool failure_law = config.damage.law.mode != dem::FailureMode::none;
+  CaseObserver observer(dir, out, model, checkpoint, failure_law);
+  if (!config.measure.modulus_fixed_group.empty())
+    observer.track_axial(
+        model.group_index(config.measure.modulus_fixed_group, "Measurements/modulus groups"),
+        model.group_index(config.measure.modulus_loaded_group, "Measurements/modulus groups"),
+        config.measure.modulus_axis);
+  if (config.measure.flexural_groups.size() == 4)
+  {
+    const auto& f = config.measure.flexural_groups;
+    const auto where = "Measurements/flexural groups";
+    observer.track_flexural(model.group_index(f[0], where), model.group_index(f[1], where),
+                            model.group_index(f[2], where), model.group_index(f[3], where));
+  }
+  dem::RunSchedule schedule;
+  schedule.record_interval = out.history_interval;
+  schedule.snapshot_interval = out.snapshot_interval;
+  schedule.checkpoint_interval = checkpoint.file.empty() ? 0.0 : checkpoint.interval;
+  schedule.checkpoint_wall_interval = checkpoint.file.empty() ? 0.0 : checkpoint.wall_interval;
+  if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
+    schedule.kill_after_step = std::atol(kill);
+  ExplicitCaseRun run;
+  run.result = run_explicit_on_ranks(model, config, observer, schedule);
+  const dem::RunResult& r = run.result;
+  observer.finish();
+  run.history = observer.load_history();
+  run.cracks = observer.cracks().cracks();
+  if (failure_law)
+    add_crack_summary(j, run.cracks, model.particles, model.bonds, config.measure.stress_layers,
+                      config.measure.stress_layer_axis, config.measure.modulus_axis);
+  else
+    add_bond_class_summary(j, model.particles, model.bonds);
+  const auto [share_max, share_final] = observer.kinetic_share();
+  j["kinetic_energy_share_max"] = share_max;
+  j["kinetic_energy_share_final"] = share_final;
+  j["solver"] = {{"type", "explicit"}};
+  // co-rotational bonds, rotations integrated exactly (bond_kernel.h, orientation_update.h)
+  j["geometry"] = "nonlinear (large displacements and rotations)";
+  if (checkpoint.resume)
+    j["resumed_from"] = {{"file", checkpoint.file.string()},
+                         {"step", checkpoint.resumed_step},
+                         {"time", checkpoint.resumed_time}};
+  j["time_step"] = model.time_step;
+  j["steps"] = r.steps;
+  j["simulated_time"] = r.time;
+  j["bond_updates_per_second"] =
+      r.wall_seconds > 0 ? double(r.steps_made) * double(model.bonds.size()) / r.wall_seconds : 0.0;
+  j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
+                 {"damping", r.energy.damping},     {"external_work", r.energy.external},
+                 {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
+                 {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
+                 {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
+  j["energy_balance_error"] = r.energy_balance_error;
+  j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+  ContactOutput(model).summary(j, r.time);
+  return run;
+}
+} // namespace
+
+nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
+                            CheckpointSettings checkpoint)
+{
+  dem::CaseConfig config = parse_dem_case(prm);
+  if (!config.run.static_solver)
+    check_explicit_end_time(config.run.end_time, config.particles.save_file);
+  // per-bond force records feed the static run's figures only (ParaView bond files evaluate
+  // each bond on demand)
+  config.run.bond_force_records = config.run.static_solver;
+  const OutputSettings out = parse_output_settings(prm);
+  checkpoint.interval = out.checkpoint_interval;
+  checkpoint.wall_interval = out.checkpoint_wall_interval;
+  if (config.run.static_solver && (checkpoint.enabled() || checkpoint.resume))
+    throw dem::InputError(
+        std::string(checkpoint.resume ? "--resume" : "Output/checkpoint interval") +
+        ": the static solver has no time steps to checkpoint (explicit runs "
+        "only)");
+  dem::Model model = dem::build_model(config);
+  if (run_dem_case_on_other_rank(config, model, checkpoint)) // mpirun -np N: rank 0 writes
+    return {};
+  std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
+              "eq. 48: %.4g s)\n",
+              model.particles.size(), model.bonds.size(), prm.get({"Bonds"}, "model").c_str(),
+              model.time_step, model.critical.critical(), model.critical.thesis_eq48);
+  std::fflush(stdout);
+
+  nlohmann::json j;
+  j["warnings"] = nlohmann::json::array();
+  check_bond_coverage(model.particles, model.bonds.size(), config, j);
+  if (!config.run.static_solver && config.run.end_time == 0) // check_explicit_end_time let it by
+    add_warning(j, "simulated_time: end time 0: the packing was written (Particles/save file) "
+                   "and nothing was simulated; the figures are those of the unloaded specimen");
+  // a static run records no load history and breaks no bond
+  ExplicitCaseRun run;
+  if (config.run.static_solver)
+    run.result = run_static_case(prm, model, config, out, dir, j);
+  else
+    run = run_explicit_case(model, config, out, dir, checkpoint, j);
+  const dem::RunResult& r = run.result;
+
+  double mean_coordination = 0;
+  for (int c : model.particles.coordination)
+    mean_coordination += c;
+  mean_coordination /= double(model.particles.size());
+
+  // Particle stresses (thesis eq. 62), their histogram (Fig. 36) and slab averages (eq. 54).
+  const dem::ParticleStresses stresses = dem::particle_stresses(model.particles, model.bonds);
+  const auto extent = dem::reference_extent(model.particles);
+  write_particle_stresses(dir / "particle_stress.csv", model.particles, stresses);
+  const std::optional<dem::StressLayers> layers =
+      add_particle_stress_figures(j, model, config.measure, stresses, extent);
+  j["porosity"] = model.porosity;
+  j["packing_volume"] = model.packing_volume;
+
+  j["mode"] = "dem";
+  j["bond_model"] = prm.get({"Bonds"}, "model");
+  j["n_particles"] = model.particles.size();
+  j["n_bonds"] = model.bonds.size();
+  j["mean_coordination"] = mean_coordination;
+  j["critical_time_step"] = model.critical.critical();
+  if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
+    j["critical_time_step_eq48"] = model.critical.thesis_eq48;
+  j["stop_reason"] = r.stop_reason;
+  j["solver_seconds"] = r.wall_seconds;
+  if (r.deflection)
+  {
+    j[config.measure.deflection_name] = *r.deflection;
+    j[config.measure.deflection_name + "_vector"] = to_json(r.deflection_vector);
+  }
+  const bool broke = !run.cracks.empty();
+  if (!config.measure.modulus_fixed_group.empty())
+    add_axial_figures(j, model, config.measure, stresses, extent, layers, run.history, broke);
+  if (!config.measure.flexural_groups.empty())
+    add_flexural_figures(j, model, config.measure, run.history, broke);
+  if (r.natural_frequency)
+    j["natural_frequency"] = *r.natural_frequency;
+  else if (!config.measure.frequency_group.empty())
+  {
+    j["natural_frequency"] = nullptr;
+    add_warning(j, "natural_frequency: undefined: group '" + config.measure.frequency_group +
+                       "' (Measurements/frequency group) did not swing through its mean at least "
+                       "three times in the run (a longer Simulation/end time, or less damping); "
+                       "written as null");
+  }
+  add_group_figures(j, model);
+  return j;
+}
+} // namespace dembridge::app
