@@ -516,7 +516,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   j["time_step"] = p.time_step();
   j["particle_time_step"] = p.particle_time_step();
   j["fe_time_step"] = p.fe_time_step();
-  // the coupled run's stable step over the particle region's own (issue 9: at least 0.9)
+  // the coupled run's stable step over the particle region's own (the goal: at least 0.9)
   j["stable_time_step_ratio"] =
       std::min(p.particle_time_step(), p.fe_time_step()) / p.particle_time_step();
   j["steps"] = r.steps;
