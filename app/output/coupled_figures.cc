@@ -3,6 +3,7 @@
 #include "app/output/result_warnings.h"
 #include "coupling/measurements.h"
 #include "dem/measurements/measurements.h"
+#include "coupling/fixed_region.h"
 #include <algorithm>
 
 namespace dembridge::app
@@ -46,6 +47,7 @@ void add_growth_summary(nlohmann::json& j, const CoupledProblem& p)
   j["n_particles_final"] = p.n_particles();
   j["growth_energy_jump_max"] = largest;
   j["region_cells_final"] = a.n_region_cells();
+  j["region_final_cells"] = coupling::region_cells(a).to_json(); // compare's fixed-region model
   j["particle_region_packing_fraction"] =
       double(a.n_region_particles()) / double(std::max<std::size_t>(1, a.packing().size()));
   j["max_utilisation"] = a.largest_utilisation();
