@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed of coupled localized-damage runs (issue 10): `dembridge compare` on the 2 m notched
+"""Speed of coupled localized-damage runs: `dembridge compare` on the 2 m notched
 sea-ice beam (bench/coupled_notched_beam.prm: particles in the middle 0.2 m, r = 5 mm,
 softening bonds) runs the coupled beam, the full-DEM beam of the same packing (20,200 spheres)
 and the elastic FE model one after the other in the same benchmark run, one thread each.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed of the coupled mode (issue 9): the coupled three-point bending beam
+"""Speed of the coupled mode: the coupled three-point bending beam
 (examples/coupled_bending.prm: 2.5 m, particles in the middle 0.25 m, r = 5 mm) against the
 explicit full-DEM run of the same beam and lattice (tests/coupling/long_beam_dem.prm with the
 explicit solver), in the same benchmark run, both quasi-static to rest; the full DEM's static
@@ -12,10 +12,10 @@ damping 0.7 (PFC's default) and the stop at an unbalanced-force ratio of 1e-5.
 
 Three coupled runs: the example as it is (Q1 cells with incompatible modes, growing from one
 spacing at the band to 0.1 m, two cells across the depth and the width) and, for the record,
-the same with four cells across (the example before 3 December, third session: 3,450 DoFs) and
-uniform plain Q1 cells one spacing long, four across (17,550 DoFs, the continuum before issue
-9's speed work). The coupling's cost is reported against
-the particle region's own (issue 9: below a quarter).
+the same with four cells across (3,450 DoFs) and
+uniform plain Q1 cells one spacing long, four across (17,550 DoFs, neither graded nor with
+incompatible modes). The coupling's cost is reported against
+the particle region's own (the goal: below a quarter).
 
 Writes bench/results/coupled_speed_r5mm.json. Usage: /usr/bin/python3 bench/coupled_speed.py
 [--build build] [--radius 0.005] [--skip-full-dem]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Reflection curve of the coupled DEM-FE handshake band (issue 9): the share of a longitudinal
+"""Reflection curve of the coupled DEM-FE handshake band: the share of a longitudinal
 pulse's energy reflected by the band, swept over the pulse's dominant wavelength (2 ... 40
 particle spacings d) and the FE element size (1 ... 4 d), in both directions (continuum ->
 particles, particles -> continuum).

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Damage benchmark (issue 8; not a test): a compression to failure of about 25,000 particles,
+"""Damage benchmark (not a test): a compression to failure of about 25,000 particles,
 and the contact throughput against YADE on the same packing in the same run.
 
     python3 bench/damage_bench.py [--build build] [--threads 1] [--repeats 3] [--skip-failure]

@@ -1,4 +1,4 @@
-// fem-bench: times the static FE solver (issue 4) on the cantilever of examples/fem_cantilever.prm
+// fem-bench: times the static FE solver on the cantilever of examples/fem_cantilever.prm
 // (1 x 0.1 x 0.1 m, clamped at x = 0, 100 N down on the free end face, E = 4 GPa, nu = 0.3) at
 // a requested number of DoFs: mesh generation + DoF setup, assembly, AMG setup, CG solve, CG
 // iterations and peak memory per rank. One JSON object per run (stdout, and --json FILE).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# DEM core benchmark (issue 12), JSON in bench/results/. In one run, on one machine:
+# DEM core benchmark, JSON in bench/results/. In one run, on one machine:
 #  - dembridge-bench on the 26,004-sphere HCP lattice (r = 2.5 mm) and on a random packing of
 #    the same box (seed 1, contact radius multiplier 1.04), 1 and 2 threads, dashpots on
 #    (xi = 0.05): the full model and the plain parallel-bond loop (bench/plain_bond_loop.h)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# FEM speed benchmark (issue 4): static solve of the cantilever (bench/fem_bench.cc) with Q1 and
+# FEM speed benchmark: static solve of the cantilever (bench/fem_bench.cc) with Q1 and
 # Q2 at 0.1, 1 and 5 million DoFs, on 1 and 2 MPI ranks; one JSON per run in bench/results/
 # (fem_q<degree>_<dofs>_np<ranks>.json). A run whose estimated memory exceeds 80 % of the
 # memory available now is skipped and recorded as skipped (the estimate is per DoF, from the

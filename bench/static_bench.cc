@@ -1,7 +1,7 @@
 // static-bench: the quasi-static solver's linear solve against the particle count, Jacobi CG
 // (Eigen, dem/solvers/static_solver.cc) beside CG + GAMG (PETSc, fem/bond_network_solver.h) on
 // the same model in the same run. The case is the thesis compression test on the 0.25 x 0.1 x
-// 0.1 m specimen (tests/static/compression_case.h), as an HCP lattice or a random close packing;
+// 0.1 m specimen (tests/fem/compression_case.h), as an HCP lattice or a random close packing;
 // the radius sets the particle count (HCP: r = 2.5 mm ~ 25.6 k, 0.74 mm ~ 1 M). Both solves stop
 // at the same relative residual of the scaled system. Prints one JSON object (--json writes it).
 #include "compression_case.h"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 12 benchmarks: random close packing time against the sphere count (packing-bench) and the
+# Quasi-static benchmarks: random close packing time against the sphere count (packing-bench) and the
 # quasi-static solver's linear solve, Jacobi CG beside CG + GAMG in the same run (static-bench),
 # on the thesis specimen. JSON into bench/results/, tables by bench/static_bench_table.py
 # (bench/RESULTS_STATIC.md).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Benchmark of the specimen study (issue 3), JSON into bench/results/:
+"""Benchmark of the specimen study, JSON into bench/results/:
 
  1. study_hcp_r2.5mm.json: uniaxial compression of the r = 2.5 mm HCP specimen (26,004
     spheres, the thesis' largest) with the static and the explicit solver: wall time,

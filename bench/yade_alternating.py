@@ -1,4 +1,4 @@
-"""dembridge against YADE on the bonded HCP lattice, in alternating runs (issue 12's "10x YADE").
+"""dembridge against YADE on the bonded HCP lattice, in alternating runs (the goal: "10x YADE").
 
 Both codes' rates move with the shared host's speed from minute to minute (YADE measured 3.4 M
 to 5.1 M bond-updates/s on one thread on different hours of the same day), so a ratio between a

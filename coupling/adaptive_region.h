@@ -149,6 +149,8 @@ public:
   bool has_families() const { return !strength_.families.empty(); }
   /// The region's cells (one char per grid cell: i fastest, then j, then k).
   const std::vector<char>& cells() const { return region_; }
+  /// The grid's cell faces per axis (cells() indexes the cells between them).
+  const GridLines& lines() const { return lines_; }
   void set_cells(std::vector<char> cells);
   /// Checkpoints: the region's cells and the last measure (a restored region of other cells is
   /// the caller's to rebuild on).

@@ -12,7 +12,7 @@
 //              to its value along the ramp below (linear, or smooth 3 s^2 - 2 s^3), as a DEM
 //              displacement load is;
 //   band       width, weight floor, element sizes, tying, damping (CouplingSettings).
-// The continuum's stiffness tensor comes from the packing itself (issue 9: both sides the same
+// The continuum's stiffness tensor comes from the packing itself (both sides the same
 // material), chosen by `tensor`:
 //   closed_form  the simple cubic lattice, C11 = k_n/d, C12 = 0, C44 = k_s/(2d)
 //                (dem/measurements/elasticity_tensor.h, 3.);

@@ -1,5 +1,5 @@
 #pragma once
-// The two single-scale models of a coupled case, for `dembridge compare` (issue 10): the same
+// The two single-scale models of a coupled case, for `dembridge compare`: the same
 // geometry, supports, load and packing as full DEM and as a full (elastic) FE model.
 //
 // Full DEM: the particle region's packing extended over the whole FE domain. For a lattice the

@@ -1,5 +1,5 @@
 #pragma once
-// A particle region of any shape: the volume of a gmsh mesh (issue 9, "the particle region as a
+// A particle region of any shape: the volume of a gmsh mesh ("the particle region as a
 // box or any gmsh volume inside the FE domain").
 //
 // The volume is kept as tetrahedra (a hexahedron is split into six around its diagonal v0-v7,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deal.II/base/index_set.h>
+#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -18,7 +19,7 @@ using dem::Vec3;
 /// only when it changes ranks (state, below), and a ghost needs only its owner's kinematics.
 namespace handler_property
 {
-constexpr unsigned slot = 0, user_id = 1, count = 2;
+constexpr unsigned slot = 0, user_id = 1, radius = 2, mass = 3; // the last two with contacts
 }
 
 /// A particle's state as it travels to a new owner: its global id, ParticleStore's fields but
@@ -137,6 +138,22 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
   const dem::ParticleStore& p = model.particles;
   n_global_ = std::int64_t(p.size());
   skin_ = 0.5 * grid_.cell_width;
+  if (!model.contributions.empty())
+  {
+    // A particle q outside the ghost layer lies at least a cell width w from every owned one
+    // at a rebuild; both travel at most skin_ until the next: w - 2 skin_ >= 2 R_max keeps
+    // them apart.
+    n_properties_ = 4;
+    const double r_max =
+        p.radius.empty() ? 0.0 : *std::max_element(p.radius.begin(), p.radius.end());
+    const double cut_off = 2.0 * r_max;
+    if (!(grid_.cell_width > 1.25 * cut_off))
+      throw dem::InputError(
+          "Contacts/model: the background cells (" + std::to_string(grid_.cell_width) +
+          " m) are not wider than 1.25 times the contact cut-off (twice the largest radius, " +
+          std::to_string(cut_off) + " m): a contact could reach past the ranks' ghost layer");
+    skin_ = std::min(skin_, 0.5 * (grid_.cell_width - cut_off));
+  }
   // the particles of each grid cell (a counting sort by cell)
   const std::size_t n_cells = grid_.n_cells();
   std::vector<std::size_t> first(n_cells + 1, 0), by_cell(p.size());
@@ -164,7 +181,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
       });
   tria_.repartition();
   weights.disconnect();
-  handler_.initialize(tria_, mapping_, handler_property::count);
+  handler_.initialize(tria_, mapping_, n_properties_);
   handler_.signals.particle_lost.connect([this](const auto&, const auto&) { ++n_lost_; });
 
   std::vector<std::uint32_t> group_mask(p.size(), 0);
@@ -172,7 +189,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     for (const int i : model.groups[g].members)
       group_mask[std::size_t(i)] |= 1u << g;
   std::vector<char> owned(p.size(), 0);
-  double props[handler_property::count] = {0, 0};
+  double props[4] = {0, 0, 0, 0};
   for (const auto& c : tria_.active_cell_iterators())
   {
     if (!c->is_locally_owned())
@@ -182,10 +199,12 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     {
       const std::size_t i = by_cell[j];
       props[handler_property::user_id] = p.id[i];
+      props[handler_property::radius] = p.radius[i];
+      props[handler_property::mass] = p.mass[i];
       const dealii::Point<3> x = point(p.position[i]);
       handler_.insert_particle(x, mapping_.transform_real_to_unit_cell(c, x),
                                dealii::types::particle_index(i), c,
-                               dealii::ArrayView<const double>(props, handler_property::count));
+                               dealii::ArrayView<const double>(props, n_properties_));
       owned[i] = 1;
     }
   }
@@ -263,7 +282,11 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
     const auto& it = ghosts[j].second;
     const std::size_t i = n_owned_ + j;
     particles_.position[i] = vec(it->get_location());
-    particles_.id[i] = std::int32_t(it->get_properties()[handler_property::user_id]);
+    const auto props = it->get_properties();
+    particles_.id[i] = std::int32_t(props[handler_property::user_id]);
+    if (with_contacts())
+      particles_.radius[i] = props[handler_property::radius],
+      particles_.mass[i] = props[handler_property::mass];
     global_id_[i] = std::int64_t(it->get_id());
   }
   rebuilt_at_.assign(particles_.position.begin(), particles_.position.begin() + long(n_owned_));
@@ -407,7 +430,8 @@ DistributedParticles::MotionCheck DistributedParticles::check_motion(bool local_
   return {global[0] > skin_ * skin_, global[1] > 0};
 }
 
-void DistributedParticles::rebuild(const Reactions& reactions)
+void DistributedParticles::rebuild(const Reactions& reactions, std::vector<double>& contacts,
+                                   std::size_t contact_record_size)
 {
   ++n_rebuilds_;
   // 1. the owned particles' locations into the handler (slot - the first slot = local index)
@@ -462,50 +486,64 @@ void DistributedParticles::rebuild(const Reactions& reactions)
   owned_set.compress(), departed_set.compress();
   const std::vector<unsigned> new_owner =
       dealii::Utilities::MPI::compute_index_owner(owned_set, departed_set, comm_);
-  // a message: the number of states, the states, the bond records
-  std::map<unsigned, std::vector<double>> outgoing;
+  // A message: the numbers of states, bond records and contact records, then the states, the
+  // bonds and the contacts. A particle that left takes its state and its bonds and contacts (a
+  // pair whose two ends left to two ranks goes to both).
+  std::map<unsigned, std::array<std::vector<double>, 3>> parts;
   for (std::size_t d = 0; d < departed.size(); ++d)
   {
-    auto& out = outgoing[new_owner[d]];
-    if (out.empty())
-      out.push_back(0);
-    out[0] += 1;
+    auto& out = parts[new_owner[d]][0];
     const auto i = std::size_t(index_in(was_owned, departed[d]));
     out.resize(out.size() + state::count);
     pack_state(particles_, i, departed[d], particles_.group_mask[i], reaction_of(i),
                &out[out.size() - state::count]);
   }
-  std::map<unsigned, std::vector<double>> bond_messages;
-  for (std::size_t k = 0; k < bonds_.size(); ++k)
+  auto route =
+      [&](const double* rec, std::size_t size, std::int64_t a, std::int64_t b, std::size_t part)
   {
-    const double* rec = &records[k * size];
-    const long da = index_in(departed, record_a(rec)), db = index_in(departed, record_b(rec));
+    const long da = a >= 0 ? index_in(departed, a) : -1, db = index_in(departed, b);
     const int to_a = da >= 0 ? int(new_owner[std::size_t(da)]) : -1;
     const int to_b = db >= 0 ? int(new_owner[std::size_t(db)]) : -1;
     for (const int to : {to_a, to_b == to_a ? -1 : to_b})
       if (to >= 0)
       {
-        auto& out = bond_messages[unsigned(to)];
+        auto& out = parts[unsigned(to)][part];
         out.insert(out.end(), rec, rec + size);
       }
+  };
+  for (std::size_t k = 0; k < bonds_.size(); ++k)
+  {
+    const double* rec = &records[k * size];
+    route(rec, size, record_a(rec), record_b(rec), 1);
   }
-  for (auto& [to, bonds] : bond_messages)
+  const std::size_t n_contacts = contact_record_size ? contacts.size() / contact_record_size : 0;
+  for (std::size_t k = 0; k < n_contacts; ++k)
+  {
+    const double* rec = &contacts[k * contact_record_size];
+    route(rec, contact_record_size, std::int64_t(rec[0]), std::int64_t(rec[1]), 2);
+  }
+  std::map<unsigned, std::vector<double>> outgoing;
+  for (auto& [to, part] : parts)
   {
     auto& out = outgoing[to];
-    if (out.empty())
-      out.push_back(0);
-    out.insert(out.end(), bonds.begin(), bonds.end());
+    out = {double(part[0].size() / state::count), double(part[1].size() / size),
+           double(contact_record_size ? part[2].size() / contact_record_size : 0)};
+    for (const auto& v : part)
+      out.insert(out.end(), v.begin(), v.end());
   }
   std::unordered_map<std::int64_t, std::vector<double>::const_iterator> arrived;
   const auto incoming = dealii::Utilities::MPI::some_to_some(comm_, outgoing);
   for (const auto& [from, message] : incoming)
   {
     (void)from;
-    const auto n_states = std::size_t(message[0]);
-    auto at = message.begin() + 1;
+    const auto n_states = std::size_t(message[0]), n_bonds = std::size_t(message[1]);
+    const auto n_in = std::size_t(message[2]);
+    auto at = message.begin() + 3;
     for (std::size_t k = 0; k < n_states; ++k, at += state::count)
       arrived.emplace(std::int64_t(at[state::id]), at);
-    records.insert(records.end(), at, message.end());
+    records.insert(records.end(), at, at + long(n_bonds * size));
+    at += long(n_bonds * size);
+    contacts.insert(contacts.end(), at, at + long(n_in * contact_record_size));
   }
   n_arrived_ += long(arrived.size());
   // 5. the stores anew: a particle that stayed from the old store, one that arrived from its
@@ -539,7 +577,7 @@ std::size_t DistributedParticles::handler_bytes() const
 {
   const std::size_t in_handler =
       handler_.n_locally_owned_particles() + (particles_.size() - n_owned_);
-  return in_handler * (7 + handler_property::count) * sizeof(double);
+  return in_handler * (7 + n_properties_) * sizeof(double);
 }
 
 std::size_t DistributedParticles::memory_bytes() const

@@ -15,7 +15,11 @@
 // properties, the handler sorts them into their new cells and ranks and exchanges the ghost
 // layer, each bond of a particle that changed ranks is sent to the particle's new owner, and the
 // stores and the partitioner are made anew. Between rebuilds the ghost set is fixed, so a bond
-// computed at one rebuild can be computed until the next whatever its particles do.
+// computed at one rebuild can be computed until the next whatever its particles do. With
+// contacts the ghosts also carry their radius and mass, and a rebuild comes before two particles
+// that are not in a rank's store could touch one of its own: the ghost layer (one cell) less
+// twice the travel allowed between rebuilds is at least the contact cut-off, twice the largest
+// radius.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/model/model.h"
@@ -70,7 +74,15 @@ public:
   MotionCheck check_motion(bool local_unstable = false);
   /// Collective: migrates particles and their bonds to their new ranks and rebuilds the stores
   /// (see above). @p reactions: the owned particles' support reactions (the solver's state).
-  void rebuild(const Reactions& reactions);
+  /// @p contacts: records of @p contact_record_size doubles whose first two name the global ids
+  /// of their particles (a negative first: only the second), each with an owned particle
+  /// (dem::ContactForces::export_history); on return the records kept here and those sent here
+  /// by the ranks the particles left.
+  void rebuild(const Reactions& reactions, std::vector<double>& contacts,
+               std::size_t contact_record_size);
+  /// Whether ghosts carry their radius and mass (the contact law reads them): a model with
+  /// contacts.
+  bool with_contacts() const { return n_properties_ > 2; }
 
   long n_rebuilds() const { return n_rebuilds_; }
   /// Particles that arrived from other ranks over all rebuilds (this rank).
@@ -111,6 +123,7 @@ private:
   std::int64_t first_slot_ = 0;       ///< slot of the first owned particle
   std::vector<dem::Vec3> rebuilt_at_; ///< owned positions at the last rebuild
   double skin_ = 0;                   ///< displacement that triggers a rebuild, m
+  unsigned n_properties_ = 2;         ///< handler properties a particle carries
   long n_rebuilds_ = 0, n_arrived_ = 0, n_lost_ = 0;
   // the per-step exchange: 13 doubles a particle at index 13 slot + c
   std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;

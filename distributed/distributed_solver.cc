@@ -81,6 +81,15 @@ DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSetting
 {
   for (const auto& g : model.groups)
     group_sizes_.push_back(g.members.size());
+  for (const auto& c : model.contributions)
+    if (auto* found = dynamic_cast<dem::ContactForces*>(c.get()))
+    {
+      report_contacts_ = found;
+      contacts_ = std::make_unique<dem::ContactForces>(*found);
+      contacts_->fix_skin(model.particles); // the whole model's, on every rank
+      contact_figures_.resize(found->n_figures());
+      contact_figures_all_.resize(contact_figures_.size() * n_ranks_);
+    }
   reduce_buffer_.resize(figure::count * n_ranks_);
   if (root_)
   {
@@ -121,6 +130,11 @@ void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& s
   local_->set_running_state(std::move(state));
   for (const auto& [i, r] : particles_.reactions())
     local_->set_support_reaction(i, r);
+  if (contacts_)
+  {
+    contacts_->distribute(owned, particles_.global_ids(), contact_history_);
+    local_->add_contribution(contacts_.get());
+  }
 }
 
 void DistributedSolver::migrate()
@@ -131,7 +145,10 @@ void DistributedSolver::migrate()
       reactions.emplace_back(std::uint32_t(i), r);
   auto state = local_->take_running_state();
   local_.reset();
-  particles_.rebuild(reactions);
+  contact_history_.clear();
+  if (contacts_)
+    contacts_->export_history(contact_history_);
+  particles_.rebuild(reactions, contact_history_, dem::ContactForces::history_record_size);
   build_local_solver(std::move(state));
 }
 
@@ -142,11 +159,16 @@ void DistributedSolver::step(bool record)
   { return std::chrono::duration<double>(clock::now() - t).count(); };
   record = record || local_->steps() == 0; // the first step records (ExplicitSolver::step)
   auto t0 = clock::now();
+  const double step_time = local_->time();
   local_->step(record);
   timings_.local_step += since(t0);
   t0 = clock::now();
   particles_.update_ghosts();
   timings_.ghosts += since(t0);
+  last_step_time_ = step_time;
+  // the platens' peak is looked for at every step, as on one rank (else at records: reduce)
+  if (contacts_ && contacts_->platens().enabled)
+    reduce_contacts(step_time);
   // The motion check is a reduction over the ranks: every few steps. A particle rebuilds at
   // half a cell of travel and is lost only after a whole cell; the other half takes far more
   // steps than this in any run whose time step resolves its bonds and contacts.
@@ -212,6 +234,24 @@ void DistributedSolver::reduce()
                           : std::numeric_limits<double>::infinity();
   n_broken_ = long(sum[figure::n_cracks]);
   broken_by_mode_ = {{long(sum[figure::broken_tension]), long(sum[figure::broken_shear])}};
+  if (contacts_ && !contacts_->platens().enabled)
+    reduce_contacts(last_step_time_);
+}
+
+void DistributedSolver::reduce_contacts(double time)
+{
+  contacts_->figures(contact_figures_.data());
+  const int n = int(contact_figures_.size());
+  MPI_Gather(contact_figures_.data(), n, MPI_DOUBLE, contact_figures_all_.data(), n, MPI_DOUBLE, 0,
+             comm_);
+  if (!root_)
+    return;
+  // sums in rank order, as the energies
+  std::fill(contact_figures_.begin(), contact_figures_.end(), 0.0);
+  for (unsigned r = 0; r < n_ranks_; ++r)
+    for (std::size_t f = 0; f < contact_figures_.size(); ++f)
+      contact_figures_[f] += contact_figures_all_[r * contact_figures_.size() + f];
+  report_contacts_->set_figures(contact_figures_.data(), time);
 }
 
 Vec3 DistributedSolver::group_mean_displacement(int group)

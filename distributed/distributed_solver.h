@@ -15,6 +15,7 @@
 // particles' state into rank 0's model, and the summed figures and the crack log into that
 // solver, so that a run's observer (history, ParaView files) and measurements read them as on
 // one rank.
+#include "dem/contacts/contact_forces.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "distributed/distributed_particles.h"
@@ -35,8 +36,8 @@ public:
   /// when due (or a throw on every rank when some rank became unstable); on record steps the
   /// figures summed over the ranks.
   void step(bool record = false);
-  /// Collective: sums the figures of the last record (and the energy accumulators as they
-  /// stand) over the ranks; step() does this on record steps.
+  /// Collective: sums the figures of the last record (and the energy accumulators and the
+  /// contact figures as they stand) over the ranks; step() does this on record steps.
   void reduce();
   /// Collective: rank 0's model takes the particles' state (every particle with @p all, else
   /// those in a group) and with @p all the state of the bonds that are no longer intact; rank
@@ -70,6 +71,9 @@ public:
 private:
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
   void migrate();
+  /// Collective: rank 0's model's contacts take the figures of the step at @p time summed over
+  /// the ranks.
+  void reduce_contacts(double time);
 
   dem::Model& model_;
   MPI_Comm comm_;
@@ -81,6 +85,13 @@ private:
   DistributedParticles particles_;
   std::vector<std::size_t> group_sizes_; ///< members over all ranks
   std::unique_ptr<dem::ExplicitSolver> local_;
+  /// the rank's contacts (a copy of the model's, stepped by the local solvers one after the
+  /// other: its energy sums and wall forces run on), the model's (rank 0: reports the sums),
+  /// and the contact histories that travel at a migration
+  std::unique_ptr<dem::ContactForces> contacts_;
+  dem::ContactForces* report_contacts_ = nullptr;
+  std::vector<double> contact_history_, contact_figures_, contact_figures_all_;
+  double last_step_time_ = 0; ///< t_n of the last step (its contact figures are at t_n)
   dem::EnergyBalance energy_;
   double max_speed_ = 0, unbalanced_ratio_ = 0;
   dem::ExplicitSolver::UnbalancedParts unbalanced_;

@@ -1,4 +1,5 @@
 #include "distributed/run_explicit.h"
+#include "dem/contacts/contact_forces.h"
 #include "dem/solvers/run_stop.h"
 #include "distributed/distributed_solver.h"
 #include <chrono>
@@ -9,9 +10,15 @@ namespace dembridge::distributed
 {
 std::string unsupported_on_ranks(const dem::Model& model)
 {
-  if (!model.contributions.empty())
-    return "Contacts/model: contacts and walls do not run on several MPI ranks yet (run on one "
-           "rank)";
+  for (const auto& c : model.contributions)
+  {
+    const auto* contacts = dynamic_cast<const dem::ContactForces*>(c.get());
+    if (!contacts)
+      return "Mode: this run's particle forces do not run on several MPI ranks (run on one rank)";
+    if (contacts->monitor().enabled)
+      return "Contacts/monitor: the first contact's record does not run on several MPI ranks "
+             "(run it on one rank)";
+  }
   if (model.groups.size() > 32)
     return "Groups/names: a run on several MPI ranks takes at most 32 groups";
   return {};

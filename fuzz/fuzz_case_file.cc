@@ -6,7 +6,7 @@
 // settings. Tiny lattice and row cases (estimate below 200 particles) are also built into a
 // model, so that the builder's own checks are reached; larger builds are left to the bad-input
 // tests: under AddressSanitizer a 2,000-particle build took about 0.15 s, which kept this target
-// at 6 executions a second (2 December 2026).
+// at 6 executions a second.
 // Input errors (dem::InputError, std::runtime_error from the reader, deal.II's ExceptionBase) are
 // the expected outcome; crashes, sanitizer reports, other exceptions, hangs and memory beyond
 // libFuzzer's limit are findings. Nothing is written: `save file` is cleared.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/fuzz.sh [RUNS] [TARGET ...]
-# Fuzzes the readers of user files with libFuzzer (issue 11): fuzz_particle_csv (particle CSV
+# Fuzzes the readers of user files with libFuzzer: fuzz_particle_csv (particle CSV
 # files), fuzz_case_file (case files: scan, deal.II parse, DEM/FE translation, size estimate,
 # small model builds) and fuzz_mesh (gmsh meshes: $PhysicalNames and deal.II's read_msh).
 # Builds them in build-fuzz/ with clang, AddressSanitizer and UndefinedBehaviorSanitizer, then

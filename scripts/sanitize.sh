@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/sanitize.sh [CTEST ARGS...]
-# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (issue 11): builds
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds
 # build-asan/ with -DDEMBRIDGE_SANITIZE=ON (every target, deal.II layers included; deal.II,
 # PETSc and Open MPI themselves are not instrumented) and runs ctest there. Any undefined
 # behaviour aborts its test (-fno-sanitize-recover=undefined); ASan aborts on the first memory

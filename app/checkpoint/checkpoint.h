@@ -25,7 +25,7 @@
 namespace dembridge::app
 {
 /// The checkpoint format this build writes and reads (docs/checkpoint.md). Version 2: rows in
-/// the model's spatial order (issue 12), prescribed velocities no longer stored per particle.
+/// the model's spatial order, prescribed velocities no longer stored per particle.
 /// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
 /// Version 4: FE dynamics runs store running summaries of their energies and zero crossings
 /// instead of the series (one value a step). Version 5: every dataset carries its CRC-32

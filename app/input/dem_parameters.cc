@@ -78,8 +78,8 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "that packs to it. predicted: from the box's wall area (one pass; a measured "
                     "pass follows when the prediction misses by more than 0.2 % in radius); "
                     "measured: a first pass capped at full size (about three passes in all, "
-                    "three times the time, the same porosity and coordination; the default "
-                    "until 3 December 2026).");
+                    "three times the time, the same porosity and coordination; the speed "
+                    "benchmarks use it, so that their recorded packings stay the same).");
   prm.declare_entry("save file", "", Anything(),
                     "Write the generated particles to this CSV file (x, y, z, r), for reuse.");
   prm.declare_entry("remove box min", "0, 0, 0", vector3,

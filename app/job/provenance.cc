@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <ctime>
 #include <deal.II/base/multithread_info.h>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -143,89 +144,112 @@ nlohmann::json provenance(const dealii::ParameterHandler& prm, const std::string
   return j;
 }
 
+namespace
+{
+/// The figures `run` prints, in this order, with their units.
+struct Figure
+{
+  const char* key; ///< a path: "first_crack.position" is summary["first_crack"]["position"]
+  const char* unit;
+};
+const Figure printed_figures[] = {
+    {"tip_deflection", "m"},
+    {"midspan_deflection", "m"},
+    {"deflection", "m"},
+    {"natural_frequency", "Hz"},
+    {"youngs_modulus", "Pa"},
+    {"youngs_modulus_fit", "Pa"},
+    {"poisson_ratio_xy", ""},
+    {"poisson_ratio_xz", ""},
+    {"poisson_ratio_yx", ""},
+    {"poisson_ratio_yz", ""},
+    {"poisson_ratio_zx", ""},
+    {"poisson_ratio_zy", ""},
+    {"flexural_modulus", "Pa"},
+    {"final_secant_modulus", "Pa"},
+    {"boundary_stress", "Pa"},
+    {"reaction_force", "N"},
+    // failure: the peak, where it came, how far past it the run went, what broke and where
+    {"peak_stress", "Pa"},
+    {"strain_at_peak", ""},
+    {"peak_load", "N"},
+    {"deflection_at_peak", "m"},
+    {"final_to_peak_load", ""},
+    {"n_broken_bonds", ""},
+    {"broken_bonds_tension", ""},
+    {"broken_bonds_shear", ""},
+    {"first_crack.position", "m"},
+    {"damage_layers.localisation", ""},
+    {"strain_energy", "J"},
+    {"energy_balance_error", ""},
+    {"kinetic_energy_share_max", ""},
+    {"shadow_energy_relative_drift", ""},
+    {"geometry", ""},
+    {"max_rotation", "rad"},
+    {"porosity", ""},
+    {"mean_coordination", ""},
+    {"n_particles", ""},
+    {"n_bonds", ""},
+    {"n_unbonded_particles", ""},
+    {"n_dofs", ""},
+    {"steps", ""},
+    {"simulated_time", "s"},
+    {"stop_reason", ""},
+};
+
+std::string number_text(const nlohmann::json& v)
+{
+  if (v.is_number_integer() || v.is_number_unsigned())
+    return std::to_string(v.get<long long>());
+  char text[32];
+  std::snprintf(text, sizeof text, "%.8g", v.get<double>());
+  return std::string(text);
+}
+
+/// The value at @p key ("first_crack.position": summary["first_crack"]["position"]), or null.
+const nlohmann::json* figure_at(const nlohmann::json& summary, const char* key)
+{
+  const nlohmann::json* v = &summary;
+  std::istringstream path(key);
+  for (std::string part; v && std::getline(path, part, '.');)
+    v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+  return v;
+}
+
+/// A figure as printed: a number, a text, "undefined" for null (its warning says why), numbers
+/// of an array joined by commas; nothing for anything else (not printed).
+std::optional<std::string> figure_text(const nlohmann::json& v)
+{
+  std::string value;
+  if (v.is_number())
+    value = number_text(v);
+  else if (v.is_string())
+    value = v.get<std::string>();
+  else if (v.is_null())
+    value = "undefined";
+  else if (v.is_array() && !v.empty() &&
+           std::all_of(v.begin(), v.end(), [](const auto& x) { return x.is_number(); }))
+    for (const auto& x : v)
+      value += (value.empty() ? "" : ", ") + number_text(x);
+  else
+    return std::nullopt;
+  return value;
+}
+} // namespace
+
 void print_figures(const nlohmann::json& summary, std::ostream& out)
 {
-  struct Figure
-  {
-    const char* key; ///< a path: "first_crack.position" is summary["first_crack"]["position"]
-    const char* unit;
-  };
-  static const Figure figures[] = {
-      {"tip_deflection", "m"},
-      {"midspan_deflection", "m"},
-      {"deflection", "m"},
-      {"natural_frequency", "Hz"},
-      {"youngs_modulus", "Pa"},
-      {"youngs_modulus_fit", "Pa"},
-      {"poisson_ratio_xy", ""},
-      {"poisson_ratio_xz", ""},
-      {"poisson_ratio_yx", ""},
-      {"poisson_ratio_yz", ""},
-      {"poisson_ratio_zx", ""},
-      {"poisson_ratio_zy", ""},
-      {"flexural_modulus", "Pa"},
-      {"final_secant_modulus", "Pa"},
-      {"boundary_stress", "Pa"},
-      {"reaction_force", "N"},
-      // failure: the peak, where it came, how far past it the run went, what broke and where
-      {"peak_stress", "Pa"},
-      {"strain_at_peak", ""},
-      {"peak_load", "N"},
-      {"deflection_at_peak", "m"},
-      {"final_to_peak_load", ""},
-      {"n_broken_bonds", ""},
-      {"broken_bonds_tension", ""},
-      {"broken_bonds_shear", ""},
-      {"first_crack.position", "m"},
-      {"damage_layers.localisation", ""},
-      {"strain_energy", "J"},
-      {"energy_balance_error", ""},
-      {"kinetic_energy_share_max", ""},
-      {"shadow_energy_relative_drift", ""},
-      {"geometry", ""},
-      {"max_rotation", "rad"},
-      {"porosity", ""},
-      {"mean_coordination", ""},
-      {"n_particles", ""},
-      {"n_bonds", ""},
-      {"n_unbonded_particles", ""},
-      {"n_dofs", ""},
-      {"steps", ""},
-      {"simulated_time", "s"},
-      {"stop_reason", ""},
-  };
-  auto number = [](const nlohmann::json& v)
-  {
-    if (v.is_number_integer() || v.is_number_unsigned())
-      return std::to_string(v.get<long long>());
-    char text[32];
-    std::snprintf(text, sizeof text, "%.8g", v.get<double>());
-    return std::string(text);
-  };
   out << "\nfigures of this run (summary.json):\n";
   char line[400];
-  for (const auto& f : figures)
+  for (const auto& f : printed_figures)
   {
-    const nlohmann::json* v = &summary;
-    std::istringstream path(f.key);
-    for (std::string part; v && std::getline(path, part, '.');)
-      v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+    const nlohmann::json* v = figure_at(summary, f.key);
     if (!v)
       continue;
-    std::string value;
-    if (v->is_number())
-      value = number(*v);
-    else if (v->is_string())
-      value = v->get<std::string>();
-    else if (v->is_null()) // an undefined figure: its warning says why
-      value = "undefined";
-    else if (v->is_array() && !v->empty() &&
-             std::all_of(v->begin(), v->end(), [](const auto& x) { return x.is_number(); }))
-      for (const auto& x : *v)
-        value += (value.empty() ? "" : ", ") + number(x);
-    else
+    const std::optional<std::string> value = figure_text(*v);
+    if (!value)
       continue;
-    std::snprintf(line, sizeof line, "  %-28s %16s%s%s\n", f.key, value.c_str(),
+    std::snprintf(line, sizeof line, "  %-28s %16s%s%s\n", f.key, value->c_str(),
                   *f.unit && !v->is_null() ? " " : "", v->is_null() ? "" : f.unit);
     out << line;
   }

@@ -1,5 +1,5 @@
 #pragma once
-// Output of bond failures (issue 8):
+// Output of bond failures:
 //  - cracks.csv: one row per broken bond: time (s), bond midpoint x y z (m), bond axis x y z,
 //    mode (tension | shear: which stress governed), released energy (J: the strain energy of a
 //    brittle bond, the energy a softening bond dissipated), particle ids a b and the bond index;

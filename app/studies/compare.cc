@@ -5,9 +5,12 @@
 #include "app/input/dem_parameters.h"
 #include "app/job/provenance.h"
 #include "app/runs/memory_guard.h"
+#include "app/studies/compare_cases.h"
 #include "app/studies/compare_plot.h"
+#include "app/studies/compare_process.h"
 #include "app/studies/verify.h"
 #include "app/studies/verify_report.h"
+#include "coupling/fixed_region.h"
 #include "coupling/full_models.h"
 #include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
@@ -22,7 +25,6 @@
 #include <map>
 #include <optional>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace dembridge::app
 {
@@ -31,170 +33,10 @@ using json = nlohmann::json;
 using dem::Vec3;
 using verify_detail::num;
 using verify_detail::python;
-using verify_detail::shell_quote;
 using verify_detail::write_json_atomically;
 
 namespace
 {
-std::string vec_text(const Vec3& v)
-{
-  return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z());
-}
-
-std::string dof_text(std::uint8_t mask)
-{
-  std::string t;
-  const char* names[3] = {"ux", "uy", "uz"};
-  for (int d = 0; d < 3; ++d)
-    if (mask & (1u << d))
-      t += (t.empty() ? "" : ", ") + std::string(names[d]);
-  return t;
-}
-
-std::string component_text(std::uint8_t mask)
-{
-  std::string t;
-  for (int d = 0; d < 3; ++d)
-    if (mask & (1u << d))
-      t += (t.empty() ? "" : ", ") + std::string(1, "xyz"[d]);
-  return t;
-}
-
-/// Drops the top-level subsections @p names (with everything nested in them) from a PRM text.
-std::string without_sections(const std::string& text, const std::vector<std::string>& names)
-{
-  std::istringstream in(text);
-  std::ostringstream out;
-  int depth = 0, skip_depth = -1;
-  for (std::string line; std::getline(in, line);)
-  {
-    const auto first = line.find_first_not_of(' ');
-    const std::string t = first == std::string::npos ? "" : line.substr(first);
-    if (t.rfind("subsection ", 0) == 0)
-    {
-      if (depth == 0 && skip_depth < 0)
-        for (const auto& n : names)
-          if (t.substr(11) == n)
-            skip_depth = 0;
-      ++depth;
-      if (skip_depth >= 0)
-        continue;
-    }
-    else if (t == "end")
-    {
-      --depth;
-      if (skip_depth >= 0)
-      {
-        if (depth == skip_depth)
-          skip_depth = -1;
-        continue;
-      }
-    }
-    if (skip_depth < 0)
-      out << line << '\n';
-  }
-  return out.str();
-}
-
-/// The full-DEM case file: the coupled case's own parameters (after --set) with the particle
-/// box of the layout, the supports as groups (and driven supports as loads), the mass damping
-/// and the coupled run's time step; the Coupling and FEM sections left out.
-std::string full_dem_text(const CompareOptions& o, const coupling::FullDemLayout& layout,
-                          double time_step)
-{
-  auto prm = read_case(o.case_file, o.overrides);
-  const fs::path case_dir = fs::absolute(o.case_file).parent_path();
-  std::vector<std::string> groups, loads;
-  for (const auto& s : layout.supports)
-    (s.driven ? loads : groups).push_back(s.name);
-  std::vector<std::string> all_groups;
-  for (const auto& s : layout.supports)
-    all_groups.push_back(s.name);
-  declare_group_parameters(*prm, all_groups);
-  declare_load_parameters(*prm, loads);
-  prm->set("Mode", "dem");
-  auto join = [](std::string list, const std::vector<std::string>& more)
-  {
-    for (const auto& m : more)
-      list += (list.find_first_not_of(" ") == std::string::npos ? "" : ", ") + m;
-    return list;
-  };
-  prm->enter_subsection("Particles");
-  prm->set("origin", vec_text(layout.origin));
-  prm->set("box size", vec_text(layout.box_size));
-  prm->leave_subsection();
-  prm->enter_subsection("Damping");
-  prm->set("mass damping", num(layout.mass_damping));
-  prm->leave_subsection();
-  prm->enter_subsection("Simulation");
-  prm->set("time step", num(time_step));
-  prm->leave_subsection();
-  prm->enter_subsection("Groups");
-  prm->set("names", join(prm->get("names"), all_groups));
-  prm->leave_subsection();
-  if (!loads.empty())
-  {
-    prm->enter_subsection("Loads");
-    prm->set("names", join(prm->get("names"), loads));
-    prm->leave_subsection();
-  }
-  static const char* faces[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
-  for (const auto& s : layout.supports)
-  {
-    prm->enter_subsection("Group " + s.name);
-    switch (s.selection.kind)
-    {
-    case dem::GroupSelection::Kind::box:
-      prm->set("select", "box");
-      prm->set("box min", vec_text(s.selection.box_min));
-      prm->set("box max", vec_text(s.selection.box_max));
-      break;
-    case dem::GroupSelection::Kind::face:
-      prm->set("select", "face");
-      prm->set("face", faces[2 * s.selection.face_axis + (s.selection.face_upper ? 1 : 0)]);
-      break;
-    default:
-      prm->set("select", "nearest");
-      prm->set("point", vec_text(s.selection.point));
-    }
-    prm->set("fixed", dof_text(s.fixed));
-    prm->leave_subsection();
-    if (s.driven)
-    {
-      prm->enter_subsection("Load " + s.name);
-      prm->set("group", s.name);
-      prm->set("type", "displacement");
-      prm->set("value", vec_text(s.displacement));
-      prm->set("components", component_text(s.driven_components));
-      prm->leave_subsection();
-    }
-  }
-  std::string header = "# Full-DEM counterpart of " + fs::absolute(o.case_file).string() +
-                       ", written by `dembridge compare` (coupling/full_models.h)\n";
-  for (const auto& n : layout.notes)
-    header += "# note: " + n + "\n";
-  return without_sections(parameters_file_text(*prm, case_dir, header), {"Coupling", "FEM"});
-}
-
-/// Runs `dembridge run` in a process of its own (its memory is its own); throws with the
-/// child's exit code when it fails.
-json run_child(const std::string& what, const fs::path& case_file,
-               const std::vector<std::string>& overrides, const fs::path& dir)
-{
-  std::string command = shell_quote(fs::read_symlink("/proc/self/exe").string()) + " run " +
-                        shell_quote(case_file.string()) + " --output-dir " +
-                        shell_quote(dir.string());
-  for (const auto& s : overrides)
-    command += " --set " + shell_quote(s);
-  std::cout << "compare: " << what << " (into " << dir.string() << ")" << std::endl;
-  const int status = std::system(command.c_str());
-  const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  if (rc != 0)
-    throw std::runtime_error("compare: " + what + " failed (exit " + std::to_string(rc) +
-                             "); its message is above");
-  return read_json_file((dir / "summary.json").string(), "compare");
-}
-
 struct Table
 {
   std::map<std::string, std::size_t> column;
@@ -312,6 +154,189 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o)
   return cmd;
 }
 
+namespace
+{
+/// The load-deflection curve of a coupled run (its own measure: load_displacement, load).
+Curve coupled_curve(const Table& h, const std::string& file)
+{
+  return {h.get("load_displacement", file), h.get("load", file)};
+}
+
+/// The full-DEM curve: the loaded group's displacement and force along the push.
+Curve dem_curve_of(const Table& h, const std::string& g, const Vec3& direction,
+                   const std::string& file)
+{
+  Curve c;
+  std::vector<double> u[3], F[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    u[d] = h.get(g + "_u" + std::string(1, "xyz"[d]), file);
+    F[d] = h.get(g + "_f" + std::string(1, "xyz"[d]), file);
+  }
+  for (std::size_t k = 0; k < h.rows.size(); ++k)
+  {
+    c.deflection.push_back(u[0][k] * direction.x() + u[1][k] * direction.y() +
+                           u[2][k] * direction.z());
+    c.load.push_back(F[0][k] * direction.x() + F[1][k] * direction.y() + F[2][k] * direction.z());
+  }
+  return c;
+}
+
+/// Model a against model b: the ratios of their figures, the speed-up (b's wall time over a's)
+/// and the distance between their first cracks.
+json versus(const json& a, const json& b)
+{
+  json vs;
+  auto ratio = [&](const char* key) -> json
+  {
+    if (!a.contains(key) || !b.contains(key) || b[key].get<double>() == 0)
+      return nullptr;
+    return a[key].get<double>() / b[key].get<double>();
+  };
+  for (const char* key : {"peak_load", "deflection_at_peak", "limit_load", "deflection_at_limit",
+                          "fracture_energy", "n_broken_bonds", "initial_stiffness"})
+    vs[std::string(key) + "_ratio"] = ratio(key);
+  vs["peak_memory_ratio"] = ratio("peak_memory_bytes");
+  vs["speedup"] = a["wall_seconds"].get<double>() > 0
+                      ? json(b["wall_seconds"].get<double>() / a["wall_seconds"].get<double>())
+                      : json(nullptr);
+  if (a.contains("first_crack") && b.contains("first_crack"))
+  {
+    const Vec3 x(a["first_crack"][0].get<double>(), a["first_crack"][1].get<double>(),
+                 a["first_crack"][2].get<double>());
+    const Vec3 y(b["first_crack"][0].get<double>(), b["first_crack"][1].get<double>(),
+                 b["first_crack"][2].get<double>());
+    vs["first_crack_distance"] = (x - y).norm();
+  }
+  return vs;
+}
+
+/// What an adaptive run's summary says of its region's growth.
+void add_growth_figures(json& model, const json& summary)
+{
+  for (const char* key : {"n_region_growth_events", "n_particles_final", "growth_energy_jump_max",
+                          "particle_region_packing_fraction", "region_cells_final",
+                          "max_utilisation", "region_growth_capped"})
+    if (summary.contains(key))
+      model[key] = summary[key];
+}
+
+struct ModelCurves
+{
+  std::vector<std::pair<std::string, Curve>> curves; ///< coupled, [coupled_fixed,] full_dem
+  double fe_stiffness = 0;
+};
+
+void write_curves(const fs::path& dir, const ModelCurves& m)
+{
+  const fs::path part = dir / "comparison.csv.part";
+  dem::OutputFile out(part); // failures name the file and the reason
+  out << "model,deflection,load\n" << std::setprecision(10);
+  for (const auto& [name, c] : m.curves)
+    for (std::size_t k = 0; k < c.load.size(); ++k)
+      out << name << ',' << c.deflection[k] << ',' << c.load[k] << '\n';
+  double top = 0, most = 0; // the elastic line up to a quarter above the coupled run's largest load
+  const Curve& coupled = m.curves.front().second;
+  for (std::size_t k = 0; k < coupled.load.size(); ++k)
+    top = std::max(top, coupled.deflection[k]), most = std::max(most, coupled.load[k]);
+  if (m.fe_stiffness > 0 && most > 0)
+    top = std::min(top, 1.25 * most / m.fe_stiffness);
+  out << "full_fem,0,0\nfull_fem," << top << ',' << m.fe_stiffness * top << '\n';
+  out.close();
+  fs::rename(part, dir / "comparison.csv");
+}
+
+/// comparison.png through the plot script (compare_plot.h); the runs' crack files by model.
+/// Returns whether it was written.
+bool write_plot(const fs::path& dir, const std::string& title, const Vec3& direction,
+                const coupling::FullDemLayout& layout, const std::vector<std::string>& crack_models)
+{
+  // the side view: the span axis against the load axis
+  int v = 2;
+  for (int d = 0; d < 3; ++d)
+    if (std::abs(direction[d]) > std::abs(direction[v]))
+      v = d;
+  const Vec3 extent = layout.box_size;
+  int h = v == 0 ? 1 : 0;
+  for (int d = 0; d < 3; ++d)
+    if (d != v && extent[d] > extent[h])
+      h = d;
+  const fs::path script = dir / "comparison_plot.py", log = dir / "comparison_plot.log";
+  const fs::path png = dir / "comparison.part.png";
+  {
+    std::ofstream out(script);
+    out << "# Written by `dembridge compare`\n" << compare_plot_script;
+  }
+  std::vector<std::string> argv = {python(),
+                                   script.string(),
+                                   (dir / "comparison.csv").string(),
+                                   png.string(),
+                                   title,
+                                   std::to_string(h),
+                                   std::to_string(v),
+                                   num(layout.origin[v]),
+                                   num(layout.origin[v] + layout.box_size[v])};
+  for (const auto& m : crack_models)
+    argv.push_back(m + "=" + (dir / m / "cracks.csv").string());
+  const int rc = run_process(argv, log);
+  if (rc == 0 && fs::exists(png))
+  {
+    fs::rename(png, dir / "comparison.png");
+    fs::remove(log);
+    return true;
+  }
+  std::cerr << "compare: warning: comparison.png not written; see " << log.string() << std::endl;
+  return false;
+}
+
+std::string cell(const json& m, const char* key, double scale)
+{
+  if (!m.contains(key) || !m[key].is_number())
+    return "-";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", m[key].get<double>() * scale);
+  return b;
+}
+
+/// The few figures, as a table.
+void print_table(const json& result)
+{
+  std::printf("\n%-14s %12s %14s %12s %10s %12s %10s %10s\n", "model", "peak load N",
+              "at deflection mm", "fracture J", "broken", "wall s", "memory MB", "particles");
+  for (const char* name : {"coupled", "coupled_fixed", "full_dem", "full_fem"})
+  {
+    if (!result["models"].contains(name))
+      continue;
+    const json& m = result["models"][name];
+    std::printf("%-14s %12s %14s %12s %10s %12s %10s %10s\n", name, cell(m, "peak_load", 1).c_str(),
+                cell(m, "deflection_at_peak", 1e3).c_str(), cell(m, "fracture_energy", 1).c_str(),
+                cell(m, "n_broken_bonds", 1).c_str(), cell(m, "wall_seconds", 1).c_str(),
+                cell(m, "peak_memory_bytes", 1e-6).c_str(), cell(m, "n_particles", 1).c_str());
+  }
+  const json& vs = result["coupled_vs_full_dem"];
+  std::printf("coupled / full DEM: peak load %s, limit load %s, fracture energy %s, speed-up %s\n",
+              cell(vs, "peak_load_ratio", 1).c_str(), cell(vs, "limit_load_ratio", 1).c_str(),
+              cell(vs, "fracture_energy_ratio", 1).c_str(), cell(vs, "speedup", 1).c_str());
+  if (result.contains("coupled_vs_coupled_fixed"))
+  {
+    const json& c = result["models"]["coupled"];
+    const json& f = result["coupled_vs_coupled_fixed"];
+    std::printf("adaptive region: %s growths, %s particles at the end (%s of the envelope's "
+                "packing), largest energy jump %s of the strain energy\n",
+                cell(c, "n_region_growth_events", 1).c_str(),
+                cell(c, "n_particles_final", 1).c_str(),
+                cell(c, "particle_region_packing_fraction", 1).c_str(),
+                cell(c, "growth_energy_jump_max", 1).c_str());
+    std::printf("coupled (adaptive) / coupled_fixed: peak load %s, fracture energy %s, speed-up "
+                "%s; coupled_fixed / full DEM: peak load %s, speed-up %s\n",
+                cell(f, "peak_load_ratio", 1).c_str(), cell(f, "fracture_energy_ratio", 1).c_str(),
+                cell(f, "speedup", 1).c_str(),
+                cell(result["coupled_fixed_vs_full_dem"], "peak_load_ratio", 1).c_str(),
+                cell(result["coupled_fixed_vs_full_dem"], "speedup", 1).c_str());
+  }
+}
+} // namespace
+
 int run_compare(const CompareOptions& o)
 {
   const std::string case_name = fs::path(o.case_file).filename().string();
@@ -339,6 +364,9 @@ int run_compare(const CompareOptions& o)
   }
   for (const auto& n : layout.notes)
     std::cerr << "compare: note: " << n << std::endl;
+  const bool adaptive = cc.settings.adaptive.enabled;
+  const int n_models = adaptive ? 4 : 3;
+  auto step = [&](int k) { return std::to_string(k) + " of " + std::to_string(n_models); };
 
   // ---- 2. The output folder: the comparison's own files go first.
   const fs::path dir =
@@ -346,22 +374,43 @@ int run_compare(const CompareOptions& o)
                        ? fs::path("output") / ("compare_" + fs::path(o.case_file).stem().string())
                        : fs::path(o.output_dir));
   fs::create_directories(dir);
-  for (const char* f : {"comparison.json", "comparison.csv", "comparison.png", "full_dem.prm"})
+  for (const char* f : {"comparison.json", "comparison.csv", "comparison.png", "full_dem.prm",
+                        "coupled_fixed.prm", "coupled_fixed_region.msh"})
     fs::remove(dir / f);
 
-  // ---- 3. The runs.
-  json coupled = run_child("1 of 3, the coupled run of " + case_name, fs::absolute(o.case_file),
-                           o.overrides, dir / "coupled");
+  // ---- 3. The runs: each of its own process (compare_process.h), the FE reference in this one.
+  run_case_process(step(1) + ", the coupled run of " + case_name, fs::absolute(o.case_file),
+                   o.overrides, dir / "coupled");
+  const json coupled = read_json_file((dir / "coupled" / "summary.json").string(), "compare");
+  int next = 2;
+  json fixed;
+  if (adaptive)
+  {
+    // the same case with the region the adaptive run ended with, placed at the start
+    const auto cells = coupling::RegionCells::from_json(coupled.at("region_final_cells"),
+                                                        "coupled/summary.json: region_final_cells");
+    coupling::write_region_mesh(cells, dir / "coupled_fixed_region.msh");
+    {
+      dem::OutputFile out(dir / "coupled_fixed.prm");
+      out << coupled_fixed_text(o, cells, dir / "coupled_fixed_region.msh");
+      out.close();
+    }
+    run_case_process(step(next++) + ", the coupled run with the final region fixed from the start "
+                                    "(coupled_fixed.prm)",
+                     dir / "coupled_fixed.prm", {}, dir / "coupled_fixed");
+    fixed = read_json_file((dir / "coupled_fixed" / "summary.json").string(), "compare");
+  }
   const double dt = coupled.at("time_step").get<double>();
   {
     dem::OutputFile out(dir / "full_dem.prm"); // failures name the file and the reason
     out << full_dem_text(o, layout, dt);
     out.close();
   }
-  json full_dem = run_child("2 of 3, the full-DEM run (full_dem.prm)", dir / "full_dem.prm", {},
-                            dir / "full_dem");
-  std::cout << "compare: 3 of 3, the elastic FE reference (into " << (dir / "full_fem").string()
-            << ")" << std::endl;
+  run_case_process(step(next++) + ", the full-DEM run (full_dem.prm)", dir / "full_dem.prm", {},
+                   dir / "full_dem");
+  const json full_dem = read_json_file((dir / "full_dem" / "summary.json").string(), "compare");
+  std::cout << "compare: " << step(next) << ", the elastic FE reference (into "
+            << (dir / "full_fem").string() << ")" << std::endl;
   fs::create_directories(dir / "full_fem");
   const auto fe_start = std::chrono::steady_clock::now();
   json fe = fem::run_case(fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
@@ -375,31 +424,24 @@ int run_compare(const CompareOptions& o)
   const std::string g = fe_model.load.group;
   const Table ch = read_csv(dir / "coupled" / "history.csv");
   const Table dh = read_csv(dir / "full_dem" / "history.csv");
-  Curve cc_curve{ch.get("load_displacement", "coupled/history.csv"),
-                 ch.get("load", "coupled/history.csv")};
-  Curve dem_curve;
+  ModelCurves curves;
+  curves.curves.emplace_back("coupled", coupled_curve(ch, "coupled/history.csv"));
+  std::optional<Table> fh;
+  if (adaptive)
   {
-    const std::string f = "full_dem/history.csv";
-    std::vector<double> u[3], F[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      u[d] = dh.get(g + "_u" + std::string(1, "xyz"[d]), f);
-      F[d] = dh.get(g + "_f" + std::string(1, "xyz"[d]), f);
-    }
-    for (std::size_t k = 0; k < dh.rows.size(); ++k)
-    {
-      dem_curve.deflection.push_back(u[0][k] * direction.x() + u[1][k] * direction.y() +
-                                     u[2][k] * direction.z());
-      dem_curve.load.push_back(F[0][k] * direction.x() + F[1][k] * direction.y() +
-                               F[2][k] * direction.z());
-    }
+    fh = read_csv(dir / "coupled_fixed" / "history.csv");
+    curves.curves.emplace_back("coupled_fixed", coupled_curve(*fh, "coupled_fixed/history.csv"));
   }
+  curves.curves.emplace_back("full_dem", dem_curve_of(dh, g, direction, "full_dem/history.csv"));
+  const Curve& cc_curve = curves.curves.front().second;
+  const Curve& dem_curve = curves.curves.back().second;
   const Vec3 R(fe.at("reactions").at("load")[0].get<double>(),
                fe.at("reactions").at("load")[1].get<double>(),
                fe.at("reactions").at("load")[2].get<double>());
   const double fe_deflection = fe_model.load.displacement.norm();
   // the reaction is the support's force on the body, along the push
   const double fe_stiffness = R.dot(direction) / fe_deflection;
+  curves.fe_stiffness = fe_stiffness;
 
   const Vec3 void_lo(fe_model.parameters.remove_lower[0], fe_model.parameters.remove_lower[1],
                      fe_model.parameters.remove_lower[2]);
@@ -430,6 +472,17 @@ int run_compare(const CompareOptions& o)
     j["output"] = run_dir.string();
     return j;
   };
+  // a coupled run: the fracture energy is the particle region's (no other part can break)
+  auto coupled_json =
+      [&](const json& summary, const Table& h, const Curve& curve, const std::string& name)
+  {
+    json m = model_json(summary, curve, h.get("n_broken_bonds", name + "/history.csv"),
+                        summary.value("fracture_energy", 0.0), dir / name);
+    m["n_fe_dofs"] = summary.value("n_fe_dofs", 0L);
+    m["coupling_share"] = summary.value("coupling_share", 0.0);
+    m["damage_reached_band"] = summary.value("damage_reached_band", false);
+    return m;
+  };
   json result;
   result["case"] = case_name;
   result["load_group"] = g;
@@ -440,17 +493,20 @@ int run_compare(const CompareOptions& o)
   result["notes"] = layout.notes;
   for (const auto& n : fe_model.notes)
     result["notes"].push_back(n);
-  // coupled: the fracture energy is the particle region's (no other part can break)
   json& mc = result["models"]["coupled"];
-  mc = model_json(coupled, cc_curve, ch.get("n_broken_bonds", "coupled/history.csv"),
-                  coupled.value("fracture_energy", 0.0), dir / "coupled");
-  mc["n_fe_dofs"] = coupled.value("n_fe_dofs", 0L);
-  mc["coupling_share"] = coupled.value("coupling_share", 0.0);
-  mc["damage_reached_band"] = coupled.value("damage_reached_band", false);
+  mc = coupled_json(coupled, ch, cc_curve, "coupled");
   json& md = result["models"]["full_dem"];
   const auto dem_fracture = dh.get("fracture_energy", "full_dem/history.csv");
   md = model_json(full_dem, dem_curve, dh.get("n_broken_bonds", "full_dem/history.csv"),
                   dem_fracture.empty() ? 0.0 : dem_fracture.back(), dir / "full_dem");
+  if (adaptive)
+  {
+    add_growth_figures(mc, coupled);
+    json& mx = result["models"]["coupled_fixed"];
+    mx = coupled_json(fixed, *fh, curves.curves[1].second, "coupled_fixed");
+    mx["region_cells"] = coupled.at("region_cells_final");
+    mx["region_file"] = (dir / "coupled_fixed_region.msh").string();
+  }
   json& mf = result["models"]["full_fem"];
   mf = {{"initial_stiffness", fe_stiffness},
         {"wall_seconds", fe["wall_seconds"]},
@@ -458,31 +514,11 @@ int run_compare(const CompareOptions& o)
         {"n_dofs", fe.value("n_dofs", 0L)},
         {"degree", o.fe_degree},
         {"output", (dir / "full_fem").string()}};
-  json& vs = result["coupled_vs_full_dem"];
-  auto ratio = [&](const char* key) -> json
+  result["coupled_vs_full_dem"] = versus(mc, md);
+  if (adaptive)
   {
-    if (!mc.contains(key) || !md.contains(key) || md[key].get<double>() == 0)
-      return nullptr;
-    return mc[key].get<double>() / md[key].get<double>();
-  };
-  vs["peak_load_ratio"] = ratio("peak_load");
-  vs["deflection_at_peak_ratio"] = ratio("deflection_at_peak");
-  vs["limit_load_ratio"] = ratio("limit_load");
-  vs["deflection_at_limit_ratio"] = ratio("deflection_at_limit");
-  vs["fracture_energy_ratio"] = ratio("fracture_energy");
-  vs["n_broken_bonds_ratio"] = ratio("n_broken_bonds");
-  vs["initial_stiffness_ratio"] = ratio("initial_stiffness");
-  vs["peak_memory_ratio"] = ratio("peak_memory_bytes");
-  vs["speedup"] = mc["wall_seconds"].get<double>() > 0
-                      ? json(md["wall_seconds"].get<double>() / mc["wall_seconds"].get<double>())
-                      : json(nullptr);
-  if (mc.contains("first_crack") && md.contains("first_crack"))
-  {
-    const Vec3 a(mc["first_crack"][0].get<double>(), mc["first_crack"][1].get<double>(),
-                 mc["first_crack"][2].get<double>());
-    const Vec3 b(md["first_crack"][0].get<double>(), md["first_crack"][1].get<double>(),
-                 md["first_crack"][2].get<double>());
-    vs["first_crack_distance"] = (a - b).norm();
+    result["coupled_fixed_vs_full_dem"] = versus(result["models"]["coupled_fixed"], md);
+    result["coupled_vs_coupled_fixed"] = versus(mc, result["models"]["coupled_fixed"]);
   }
   if (mc.contains("initial_stiffness"))
     result["coupled_vs_full_fem"]["initial_stiffness_ratio"] =
@@ -493,85 +529,23 @@ int run_compare(const CompareOptions& o)
   result["particle_radius"] = cc.particles.particles.radius;
 
   // ---- 5. Files: the curves, the plot, comparison.json last.
-  {
-    const fs::path part = dir / "comparison.csv.part";
-    dem::OutputFile out(part); // failures name the file and the reason
-    out << "model,deflection,load\n" << std::setprecision(10);
-    for (std::size_t k = 0; k < cc_curve.load.size(); ++k)
-      out << "coupled," << cc_curve.deflection[k] << ',' << cc_curve.load[k] << '\n';
-    for (std::size_t k = 0; k < dem_curve.load.size(); ++k)
-      out << "full_dem," << dem_curve.deflection[k] << ',' << dem_curve.load[k] << '\n';
-    double top = 0, most = 0; // the elastic line up to a quarter above the largest load
-    for (std::size_t k = 0; k < cc_curve.load.size(); ++k)
-      top = std::max(top, cc_curve.deflection[k]), most = std::max(most, cc_curve.load[k]);
-    if (fe_stiffness > 0 && most > 0)
-      top = std::min(top, 1.25 * most / fe_stiffness);
-    out << "full_fem,0,0\nfull_fem," << top << ',' << fe_stiffness * top << '\n';
-    out.close();
-    fs::rename(part, dir / "comparison.csv");
-  }
+  write_curves(dir, curves);
   result["plot"] = nullptr;
-  if (o.plot)
-  {
-    // the side view: the span axis against the load axis
-    int v = 2;
-    for (int d = 0; d < 3; ++d)
-      if (std::abs(direction[d]) > std::abs(direction[v]))
-        v = d;
-    const Vec3 extent = layout.box_size;
-    int h = v == 0 ? 1 : 0;
-    for (int d = 0; d < 3; ++d)
-      if (d != v && extent[d] > extent[h])
-        h = d;
-    const fs::path script = dir / "comparison_plot.py", log = dir / "comparison_plot.log";
-    const fs::path png = dir / "comparison.part.png";
-    {
-      std::ofstream out(script);
-      out << "# Written by `dembridge compare`\n" << compare_plot_script;
-    }
-    const std::string command =
-        shell_quote(python()) + " " + shell_quote(script.string()) + " " +
-        shell_quote((dir / "comparison.csv").string()) + " " + shell_quote(png.string()) + " " +
-        shell_quote(case_name + ": coupled, full DEM, full FE") + " " +
-        shell_quote((dir / "coupled" / "cracks.csv").string()) + " " +
-        shell_quote((dir / "full_dem" / "cracks.csv").string()) + " " + std::to_string(h) + " " +
-        std::to_string(v) + " " + num(layout.origin[v]) + " " +
-        num(layout.origin[v] + layout.box_size[v]) + " > " + shell_quote(log.string()) + " 2>&1";
-    const int status = std::system(command.c_str());
-    if (status == 0 && fs::exists(png))
-    {
-      fs::rename(png, dir / "comparison.png");
-      fs::remove(log);
-      result["plot"] = "comparison.png";
-    }
-    else
-      std::cerr << "compare: warning: comparison.png not written; see " << log.string()
-                << std::endl;
-  }
+  std::vector<std::string> crack_models = {"coupled"};
+  if (adaptive)
+    crack_models.push_back("coupled_fixed");
+  crack_models.push_back("full_dem");
+  if (o.plot && write_plot(dir,
+                           case_name + ": " +
+                               (adaptive ? "adaptive coupled, fixed-region "
+                                           "coupled, full DEM, full FE"
+                                         : "coupled, full DEM, full FE"),
+                           direction, layout, crack_models))
+    result["plot"] = "comparison.png";
   write_json_atomically(dir, "comparison.json", result);
 
   // ---- 6. The few figures, as a table.
-  auto cell = [](const json& m, const char* key, double scale) -> std::string
-  {
-    if (!m.contains(key) || !m[key].is_number())
-      return "-";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", m[key].get<double>() * scale);
-    return b;
-  };
-  std::printf("\n%-12s %12s %14s %12s %10s %12s %10s\n", "model", "peak load N", "at deflection mm",
-              "fracture J", "broken", "wall s", "memory MB");
-  for (const char* name : {"coupled", "full_dem", "full_fem"})
-  {
-    const json& m = result["models"][name];
-    std::printf("%-12s %12s %14s %12s %10s %12s %10s\n", name, cell(m, "peak_load", 1).c_str(),
-                cell(m, "deflection_at_peak", 1e3).c_str(), cell(m, "fracture_energy", 1).c_str(),
-                cell(m, "n_broken_bonds", 1).c_str(), cell(m, "wall_seconds", 1).c_str(),
-                cell(m, "peak_memory_bytes", 1e-6).c_str());
-  }
-  std::printf("coupled / full DEM: peak load %s, limit load %s, fracture energy %s, speed-up %s\n",
-              cell(vs, "peak_load_ratio", 1).c_str(), cell(vs, "limit_load_ratio", 1).c_str(),
-              cell(vs, "fracture_energy_ratio", 1).c_str(), cell(vs, "speedup", 1).c_str());
+  print_table(result);
   std::printf("compare: wrote %s\n", (dir / "comparison.json").c_str());
   return 0;
 }

@@ -10,7 +10,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-comparison_csv, png, title, coupled_cracks, dem_cracks, axis_h, axis_v, v_lo, v_hi = sys.argv[1:10]
+# then one NAME=PATH per crack panel (a run's cracks.csv)
+comparison_csv, png, title, axis_h, axis_v, v_lo, v_hi = sys.argv[1:8]
+panels = [a.split("=", 1) for a in sys.argv[8:]]
 h, v = int(axis_h), int(axis_v)
 v_lo, v_hi = float(v_lo), float(v_hi)
 curves = {}
@@ -31,15 +33,16 @@ def cracks(path):
         pass
     return xs, ys, modes
 
-fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-style = {"coupled": "C0-", "full_dem": "C1--", "full_fem": "k:"}
+fig, axes = plt.subplots(1, 1 + len(panels), figsize=(5 * (1 + len(panels)), 4.5))
+style = {"coupled": "C0-", "coupled_fixed": "C2-.", "full_dem": "C1--", "full_fem": "k:"}
 for name, (d, F) in curves.items():
     axes[0].plot(d, F, style.get(name, "-"), label=name.replace("_", " "))
 axes[0].set_xlabel("deflection (mm)"); axes[0].set_ylabel("load (N)")
 axes[0].legend(); axes[0].grid(alpha=0.3)
-sets = [cracks(coupled_cracks), cracks(dem_cracks)]
-every_x = sets[0][0] + sets[1][0]
-for ax, (xs, ys, modes), name in ((axes[1], sets[0], "coupled"), (axes[2], sets[1], "full DEM")):
+sets = [cracks(path) for _, path in panels]
+every_x = [x for s in sets for x in s[0]]
+for ax, (xs, ys, modes), (name, _) in zip(axes[1:], sets, panels):
+    name = name.replace("_", " ")
     for mode, colour in (("tension", "C3"), ("shear", "C2")):
         sel = [k for k, m in enumerate(modes) if m == mode]
         ax.scatter([xs[k] for k in sel], [ys[k] for k in sel], s=6, c=colour, label=mode)

@@ -1,6 +1,6 @@
 #pragma once
 // dembridge elasticity CASE.prm [--set ...] [--output-dir DIR]: the packing's own stiffness
-// tensor (issue 9; dem/measurements/elasticity_tensor.h). Builds the DEM model of the case,
+// tensor (dem/measurements/elasticity_tensor.h). Builds the DEM model of the case,
 // measures the 6x6 tensor of the specimen's core under six uniform strains (static solver) and,
 // for lattice sources (cubic, hcp, fcc), the ideal lattice's tensor from one periodic cell;
 // writes DIR/elasticity.json (default output/elasticity_<case stem>) atomically and prints a

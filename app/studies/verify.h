@@ -1,6 +1,6 @@
 #pragma once
-// dembridge verify: a DEM specimen run against the finite-element model of the same specimen
-// (issue 4). One command runs the DEM case (or reads a finished run), derives the FE problem
+// dembridge verify: a DEM specimen run against the finite-element model of the same specimen.
+// One command runs the DEM case (or reads a finished run), derives the FE problem
 // (geometry = the specimen's extent, the same supports and load, isotropic E and nu from a
 // uniaxial DEM test), runs it, and reports side by side: deflections, support reactions,
 // strain energy and the layer-averaged stress through the depth (DEM eq. 54 slab averages vs FE

@@ -62,6 +62,17 @@ void ContactForces::attach(const ParticleStore& p, const BondStore& bonds)
     bond_partner_[std::size_t(fill[a])] = bonds.b[k], bond_index_[std::size_t(fill[a]++)] = int(k);
     bond_partner_[std::size_t(fill[b])] = bonds.a[k], bond_index_[std::size_t(fill[b]++)] = int(k);
   }
+  if (!(list_.skin() > 0)) // else fixed over the whole model (fix_skin)
+    fix_skin(p);
+  if (damping_)
+  {
+    damping_force_.assign(n, Vec3::Zero());
+    damping_torque_.assign(n, Vec3::Zero());
+  }
+}
+
+void ContactForces::fix_skin(const ParticleStore& p)
+{
   double skin = material_.skin;
   if (!(skin > 0)) // default: a fifth of the smallest radius
   {
@@ -72,18 +83,13 @@ void ContactForces::attach(const ParticleStore& p, const BondStore& bonds)
       skin = 0;
   }
   list_.set_skin(skin);
-  if (damping_)
-  {
-    damping_force_.assign(n, Vec3::Zero());
-    damping_torque_.assign(n, Vec3::Zero());
-  }
 }
 
 void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
 {
   const auto& x = p.position;
   const auto& r = p.radius;
-  list_.build(x, r);
+  list_.build(x, r, owned_);
   const std::size_t np = list_.size();
   const auto& prev = list_.previous_index();
   std::swap(xi_, xi_old_), std::swap(theta_, theta_old_);
@@ -111,7 +117,7 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
   {
     const Vec3& n = walls_[w].normal;
     wall_offset_built_[w] = point_now_[w].dot(n);
-    for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t i = 0; i < std::min(p.size(), owned_); ++i) // a ghost: its owner's
     {
       if ((x[i] - point_now_[w]).dot(n) - r[i] >= list_.skin())
         continue;
@@ -129,6 +135,8 @@ void ContactForces::rebuild(const ParticleStore& p, double /*time*/)
       wall_kr_.push_back(kept ? wall_kr_old_[o] : 0.0);
     }
   }
+  if (!history_key_.empty())
+    take_distributed_history();
 }
 
 void ContactForces::add_forces(ParticleStore& p, double time, double dt, bool record)
@@ -180,17 +188,20 @@ void ContactForces::add_forces(ParticleStore& p, double time, double dt, bool re
   if (monitor_.enabled)
     update_monitor(p, time, dt);
   if (platens_.enabled)
-  {
-    auto& t = platens_;
-    const auto lo = std::size_t(t.lower), up = std::size_t(t.upper);
-    t.stress = -(wall_force_[lo].dot(walls_[lo].normal) + wall_force_[up].dot(walls_[up].normal)) /
-               (2.0 * t.area);
-    t.strain = (walls_[lo].displacement(time).dot(walls_[lo].normal) +
-                walls_[up].displacement(time).dot(walls_[up].normal)) /
-               t.length;
-    if (t.stress > t.peak_stress)
-      t.peak_stress = t.stress, t.strain_at_peak = t.strain, t.time_at_peak = time;
-  }
+    update_platens(time);
+}
+
+void ContactForces::update_platens(double time)
+{
+  auto& t = platens_;
+  const auto lo = std::size_t(t.lower), up = std::size_t(t.upper);
+  t.stress = -(wall_force_[lo].dot(walls_[lo].normal) + wall_force_[up].dot(walls_[up].normal)) /
+             (2.0 * t.area);
+  t.strain = (walls_[lo].displacement(time).dot(walls_[lo].normal) +
+              walls_[up].displacement(time).dot(walls_[up].normal)) /
+             t.length;
+  if (t.stress > t.peak_stress)
+    t.peak_stress = t.stress, t.strain_at_peak = t.strain, t.time_at_peak = time;
 }
 
 void ContactForces::measure_platens(int lower, int upper, double area)
@@ -255,7 +266,10 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     const std::int32_t bond = pair_bond_[k];
     if (bond >= 0 && state[bond] != BondState::broken)
       continue; // an intact bond carries this pair
-    const auto i = std::size_t(first[k]), j = std::size_t(second[k]);
+    auto i = std::size_t(first[k]), j = std::size_t(second[k]);
+    if (global_id_ && (*global_id_)[i] > (*global_id_)[j]) // the same on every rank
+      std::swap(i, j);
+    const bool book = i < owned_; // on the rank that owns the lower id
     const Vec3 d = x[j] - x[i];
     const double dist2 = d.squaredNorm(), reach = r[i] + r[j];
     if (dist2 >= reach * reach || dist2 == 0.0)
@@ -280,24 +294,27 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     const bool was_open = kt_[k] == 0.0;
     const ContactOutput out = contact_force<Law, rolling>(*pair_law, in, mu, rolling_, dt,
                                                           {xi_[k], theta_[k], kt_[k], kr_[k]});
-    if (bond >= 0 && was_open) // a broken bond's pair, touching from the first step on: its
-      activation += out.energy - 0.5 * dt * out.power; // in the solver's time-centred form
-    ++active;
     F[j] += out.force;
     F[i] -= out.force;
     T[i] += out.torque_i;
     T[j] += out.torque_j;
-    slip += out.slip;
     if constexpr (damping)
     {
       // dashpot resultants per particle, for the dashpot's work with v^{n+1/2}
-      dissipation += out.damping;
       const Vec3 arm_force = n.cross(out.damping_force);
       damping_force_[j] += out.damping_force;
       damping_torque_[j] -= in.arm_j * arm_force;
       damping_force_[i] -= out.damping_force;
       damping_torque_[i] -= in.arm_i * arm_force;
     }
+    if (!book)
+      continue;
+    if (bond >= 0 && was_open) // a broken bond's pair, touching from the first step on: its
+      activation += out.energy - 0.5 * dt * out.power; // in the solver's time-centred form
+    ++active;
+    slip += out.slip;
+    if constexpr (damping)
+      dissipation += out.damping;
     if constexpr (record)
       stored += out.energy;
     if (monitor_.enabled)
@@ -388,7 +405,9 @@ void ContactForces::after_update(const ParticleStore& p, double time, double dt,
     double lead = 0;
     for (std::size_t i = 0; i < p.size(); ++i)
     {
-      lead -= damping_force_[i].dot(p.velocity[i]) + damping_torque_[i].dot(p.angular_velocity[i]);
+      if (i < owned_) // a ghost's is its owner's
+        lead -=
+            damping_force_[i].dot(p.velocity[i]) + damping_torque_[i].dot(p.angular_velocity[i]);
       damping_force_[i].setZero();
       damping_torque_[i].setZero();
     }

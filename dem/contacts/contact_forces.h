@@ -19,6 +19,13 @@
 //   fracture         less the stored energy of contacts that broken bonds hand over already
 //                    overlapping (activation_energy): that part of the bond's energy stays.
 // A wall's force (force_on_wall) is the sum of the forces the particles exert on it.
+// On several MPI ranks (distributed/, contact_ranks.cc) each rank holds one ContactForces over
+// its own particles and its ghosts: a pair with a ghost end is computed on both ranks, each
+// applying its own particle's force, in the orientation of the particles' global ids (lower id
+// first, as on one rank) so that both copies agree bit for bit; what it books (energies, the
+// contact count) is booked on the rank that owns the lower id. A sphere-wall contact is the
+// rank's that owns the sphere. The histories travel by global ids (export_history,
+// distribute) when the particles change ranks.
 #include "dem/contacts/contact_config.h"
 #include "dem/contacts/contact_monitor.h"
 #include "dem/contacts/hertz_mindlin.h"
@@ -27,6 +34,8 @@
 #include "dem/contacts/rolling_resistance.h"
 #include "dem/contacts/wall.h"
 #include "dem/solvers/step_contribution.h"
+#include <array>
+#include <limits>
 #include <vector>
 
 namespace dembridge::dem
@@ -50,6 +59,27 @@ public:
   bool checkpointable() const override { return true; }
   void visit_state(StateArchive& a) override;
 
+  // Several MPI ranks (contact_ranks.cc)
+  /// The rank's particles were renumbered: [0, owned) are its own, the rest ghosts, with
+  /// global ids @p global_ids (kept by reference); the contacts restart from @p history
+  /// (export_history's records of every rank that held them), taken by the pairs and wall
+  /// contacts found at the next list build. Call before the solver attaches this.
+  /// The Verlet skin from every particle (not only a rank's): the same search on every rank.
+  void fix_skin(const ParticleStore& whole);
+  void distribute(std::size_t owned, const std::vector<std::int64_t>& global_ids,
+                  const std::vector<double>& history);
+  /// Appends the history of each touching contact held here: (lower id, upper id, xi, theta,
+  /// kt, kr) for a pair, (-1 - wall, id, ...) for a sphere-wall contact.
+  void export_history(std::vector<double>& out) const;
+  static constexpr std::size_t history_record_size = 10;
+  /// The figures a run on several ranks sums over them at a record: active contacts, contact
+  /// updates, list builds, search and contact seconds, activation energy, each wall's force.
+  std::size_t n_figures() const { return 6 + 3 * walls_.size(); }
+  void figures(double* out) const;
+  /// The reporting copy (never stepped) takes the summed figures at time t (the platens'
+  /// stress, strain and peak from the summed wall forces).
+  void set_figures(const double* sums, double time);
+
   const ContactConfig& material() const { return material_; }
   /// Contacts (pairs and sphere-wall) that touched at the last step.
   std::size_t active_contacts() const { return n_active_; }
@@ -67,7 +97,7 @@ public:
   const PlatenTest& platens() const { return platens_; }
 
   // Throughput and cost of the neighbour search (benchmarks)
-  long list_builds() const { return list_.builds(); }
+  long list_builds() const { return reported_builds_ >= 0 ? reported_builds_ : list_.builds(); }
   std::size_t listed_pairs() const { return list_.size(); }
   double search_seconds() const { return search_seconds_; }
   /// Wall time in the contact force loops (pairs and walls), s.
@@ -79,6 +109,10 @@ private:
   void compute(ParticleStore& p, double time, double dt);
   void rebuild(const ParticleStore& p, double time);
   void update_monitor(const ParticleStore& p, double time, double dt);
+  void update_platens(double time);
+  /// After a list build following distribute(): the new pairs and wall contacts take their
+  /// history from the records given there.
+  void take_distributed_history();
   /// The bond joining each listed pair (pair_bond_), from the bonds of each particle.
   void link_pairs_to_bonds();
 
@@ -90,6 +124,12 @@ private:
   bool damping_ = false;
 
   const BondStore* bonds_ = nullptr;
+  // several ranks: particles [0, owned_) are this rank's; pairs oriented by global id
+  std::size_t owned_ = std::numeric_limits<std::size_t>::max();
+  const std::vector<std::int64_t>* global_id_ = nullptr;
+  std::vector<double> history_in_; ///< records from distribute()
+  std::vector<std::pair<std::array<std::int64_t, 2>, std::size_t>> history_key_; ///< sorted
+  long reported_builds_ = -1;
   // bonds of each particle (CSR): partner and bond index
   std::vector<std::int32_t> bond_start_, bond_partner_, bond_index_;
 

@@ -27,7 +27,13 @@ bool NeighbourList::needs_rebuild(const std::vector<Vec3>& x) const
   return false;
 }
 
-void NeighbourList::build(const std::vector<Vec3>& x, const std::vector<double>& r)
+void NeighbourList::invalidate()
+{
+  first_.clear(), second_.clear(), previous_.clear(), x_built_.clear();
+}
+
+void NeighbourList::build(const std::vector<Vec3>& x, const std::vector<double>& r,
+                          std::size_t owned)
 {
   const std::size_t n = x.size();
   std::swap(first_, old_first_);
@@ -82,7 +88,7 @@ void NeighbourList::build(const std::vector<Vec3>& x, const std::vector<double>&
     cell_members_[std::size_t(fill_[std::size_t(cell_of_[i])]++)] = std::int32_t(i);
 
   // Pairs in (i, j) order: particle i scans its 27 cells for j > i, then sorts its few j.
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < std::min(n, owned); ++i)
   {
     const std::size_t begin = second_.size();
     const long c = cell_of_[i];

@@ -13,6 +13,7 @@
 #include "dem/core/state_archive.h"
 #include "dem/core/types.h"
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace dembridge::dem
@@ -31,8 +32,14 @@ public:
   /// Largest displacement of a particle since the last build (m).
   double max_displacement(const std::vector<Vec3>& x) const;
 
-  /// Finds all pairs within the skin; positions x, radii r.
-  void build(const std::vector<Vec3>& x, const std::vector<double>& r);
+  /// Finds all pairs within the skin; positions x, radii r. With @p owned < x.size() (a rank
+  /// of a distributed run: ghosts after its own particles) only pairs with an end in
+  /// [0, owned): a pair of two ghosts is the other ranks' to compute.
+  void build(const std::vector<Vec3>& x, const std::vector<double>& r,
+             std::size_t owned = std::numeric_limits<std::size_t>::max());
+  /// Forgets the pairs (the particles were renumbered): the next build starts afresh, every
+  /// pair new (previous_index() -1).
+  void invalidate();
 
   std::size_t size() const { return first_.size(); }
   const std::vector<std::int32_t>& first() const { return first_; }

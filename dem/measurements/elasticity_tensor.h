@@ -1,5 +1,5 @@
 #pragma once
-// The packing's own linear-elastic stiffness tensor (issue 9): what a continuum must be given to
+// The packing's own linear-elastic stiffness tensor: what a continuum must be given to
 // stand for a bonded packing (the coupled mode's FE side, `dembridge verify`).
 //
 // Voigt notation throughout: order xx, yy, zz, yz, xz, xy; engineering shear strains

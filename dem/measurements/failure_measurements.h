@@ -1,5 +1,5 @@
 #pragma once
-// What a specimen that breaks is measured by (issue 8):
+// What a specimen that breaks is measured by:
 //  - damage_layers: the fraction of bonds broken in each slab of the specimen (the slabs of the
 //    stress layers, thesis eq. 54), bonds assigned by their midpoint in the reference
 //    configuration, and how localised the failure is: the largest share of all broken bonds that

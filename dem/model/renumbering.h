@@ -1,5 +1,5 @@
 #pragma once
-// Spatial order of the particles and bonds (issue 12). At setup the particles are renumbered by
+// Spatial order of the particles and bonds. At setup the particles are renumbered by
 // their reference centres into layers across the specimen's longest axis, rows within a layer
 // across the middle axis (layers and rows one mean diameter thick), and along the shortest axis
 // within a row: the order a lattice generator writes, for any packing. Bonds keep their ends

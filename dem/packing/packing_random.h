@@ -60,8 +60,8 @@ struct RandomPackingSettings
   /// Step 4 above with the jamming porosity predicted from the box (predicted_jamming_porosity)
   /// instead of measured by a first pass capped at s = 1: usually one pass instead of three,
   /// with the same porosity and coordination (another packing of the same statistics). False:
-  /// the measured estimate, the default until 3 December 2026 (the speed benchmarks keep it,
-  /// so that their recorded packings stay the same).
+  /// the measured estimate (the speed benchmarks use it, so that their recorded packings
+  /// stay the same).
   bool predict_jamming = true;
   /// Threads for the overlap forces, the FIRE update and the Verlet list rebuilds (OpenMP).
   /// Every sum keeps its one-thread order, so any count gives bitwise the same packing.

@@ -1,5 +1,5 @@
 """check_provenance.py OUTDIR [Section/key=value ...]: summary.json records where the results
-come from (issue 11): the version and git commit of the binary, the command line, host, threads,
+come from: the version and git commit of the binary, the command line, host, threads,
 start time, the complete effective parameter set (every section of print-parameters), the list of
 the files it wrote (each present), and parameters.prm beside it. Each Section/key=value (a --set
 of the run) must be in the command line, in summary.json's parameters and in parameters.prm.

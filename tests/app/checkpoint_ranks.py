@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""A coupled or FE checkpoint is resumed on the number of MPI ranks that wrote it, no other (issue 11;
-docs/checkpoint.md): each rank sums its own share of the continuum's works.
+"""A coupled or FE checkpoint is resumed on the number of MPI ranks that wrote it, no other
+(docs/checkpoint.md): each rank sums its own share of the continuum's works.
 
 usage: checkpoint_ranks.py DEMBRIDGE MPIEXEC CASE OUT [--kill-after-step N] [--set KEY=VALUE]...
 

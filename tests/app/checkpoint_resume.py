@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Kill -9 and resume (issue 11; docs/checkpoint.md).
+"""Kill -9 and resume (docs/checkpoint.md).
 
 usage: checkpoint_resume.py DEMBRIDGE CASE OUT [--expect-cracks] [--coupled | --fem]
                             [--np N --mpiexec MPIEXEC] [--set KEY=VALUE]...

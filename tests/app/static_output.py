@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Static runs write the explicit run's output (issue 11).
+"""Static runs write the explicit run's output.
 
 usage: static_output.py DEMBRIDGE CASE OUT [--set KEY=VALUE]...
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of the bond-failure specimens (issue 8) that compare runs or read cracks.csv.
+"""Checks of the bond-failure specimens that compare runs or read cracks.csv.
 
     check_failure.py ratio A.json B.json KEY EXPECTED TOL   B[KEY] / A[KEY] = EXPECTED within TOL
                                                            (relative)

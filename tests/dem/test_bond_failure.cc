@@ -1,4 +1,4 @@
-// Bond failure (issue 8): a single bond of each model, driven kinematically in pure tension,
+// Bond failure: a single bond of each model, driven kinematically in pure tension,
 // shear, bending and torsion, fails at the load beam theory on its section gives (bond_stress.h:
 // sigma = F_n/A + beta |M_b| R/I, tau = |F_s|/A + beta |M_t| R/J), within 0.1 %; Mohr-Coulomb
 // shear strength c + sigma_c tan(phi); a softening bond dissipates G_f A (bond_damage.h eq. 4)

@@ -1,4 +1,4 @@
-// The optimised bond loop (issue 12: SIMD blocks of bond_block.h, bonds in the solver's thread
+// The optimised bond loop (SIMD blocks of bond_block.h, bonds in the solver's thread
 // partition, particles in spatial order) against the scalar kernel of bond_kernel.h evaluated
 // bond by bond: the same particle forces, moments, dashpot resultants, per-bond contact forces
 // and strain energy to 1e-12 relative (only the order of floating-point sums and the compiler's

@@ -1,4 +1,4 @@
-// The packing's own stiffness tensor (dem/measurements/elasticity_tensor.h, issue 9) against
+// The packing's own stiffness tensor (dem/measurements/elasticity_tensor.h) against
 // closed forms and a published value:
 //  - the simple cubic PBM lattice: C11 = k_n/d, C12 = 0, C44 = k_s/(2d) (elasticity_tensor.h,
 //    item 3), measured on a finite block (1e-6 of C11) and from the periodic cell (1e-12);

@@ -1,4 +1,4 @@
-// Inputs the DEM core used to take silently (issue 11): particle files with comments and named
+// Inputs the DEM core must not take silently: particle files with comments and named
 // columns in any order, overlapping spheres in a file, a `nearest` point far outside the
 // specimen, a load on DOFs that every particle of its group holds fixed. Each refusal is one
 // line that names the file or key and the reason.

@@ -1,6 +1,6 @@
 // Mass-proportional damping in the explicit solver (Damping/mass damping, explicit_solver.h):
 // the force -c m v^{n-1/2} on every particle's translation, what Coupling/mass damping applies
-// in a coupled run, so that a full-DEM run can be damped alike (issue 10).
+// in a coupled run, so that a full-DEM run can be damped alike.
 //
 // A particle on one axial bond to a clamped one is a damped oscillator, m x'' + c m x' + k x = 0
 // with omega = sqrt(k / m) and damping ratio xi = c / (2 omega). Its energy after whole damped

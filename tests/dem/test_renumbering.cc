@@ -1,4 +1,4 @@
-// Spatial renumbering at setup (dem/model/renumbering.h, issue 12): the same specimen built with
+// Spatial renumbering at setup (dem/model/renumbering.h): the same specimen built with
 // and without it is the same physical model; only the order of floating-point sums differs.
 //  - static solves: the same end displacements, E and nu to solver tolerance (CG to 1e-10: 1e-8
 //    relative) on an HCP lattice and a random packing;

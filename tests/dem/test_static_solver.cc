@@ -1,6 +1,6 @@
 // The quasi-static solver (dem/static_solver.h) against the analytical beam solutions of the
 // seeds (paper eq. 29 and Table 4, thesis eq. B1), against the explicit solver's damped
-// equilibrium on a bonded lattice (issue 3: within 0.1 %), and its singular-system error.
+// equilibrium on a bonded lattice (within 0.1 %), and its singular-system error.
 #include "beam_cases.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
@@ -179,7 +179,7 @@ TEST(StaticPrescribedMotion, VelocityLoad)
   EXPECT_THROW(solve_static(final_state), InputError);
 }
 
-// Issue 3: the static solve equals the explicit run's damped equilibrium within 0.1 %, on a
+// The static solve equals the explicit run's damped equilibrium within 0.1 %, on a
 // bonded simple cubic and an HCP lattice.
 class StaticVersusExplicit : public ::testing::TestWithParam<ParticleSource::Kind>
 {

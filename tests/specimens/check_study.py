@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks of the specimen study (issue 3) on the results.csv that scripts/study.py writes.
+"""Checks of the specimen study on the results.csv that scripts/study.py writes.
 
     check_study.py hcp_wang_mora RESULTS.csv     E(porosity) of HCP specimens -> Wang-Mora
     check_study.py random_trend RESULTS.csv      seed spread of E, nu shrinks as r falls
@@ -144,7 +144,7 @@ def random_trend(path):
 
 
 def solvers(path, tol=1e-3, energy_tol=0.01):
-    """The static solver against the explicit one on the same specimens (issue 3): E, nu_xy,
+    """The static solver against the explicit one on the same specimens: E, nu_xy,
     nu_xz (uniaxial) and the midspan deflection and E_f (bending) within tol relative; every
     explicit run's energy balance error (thesis eq. 53) below energy_tol."""
     with open(path) as f:

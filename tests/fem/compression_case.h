@@ -1,5 +1,5 @@
 #pragma once
-// The quasi-static benchmark case (tests/static, bench/static_bench.cc): the thesis specimen
+// The quasi-static benchmark case (tests/fem/test_static_gamg.cc, bench/static_bench.cc): the thesis specimen
 // (0.25 x 0.1 x 0.1 m, TBBM bonds, E_b = 4 GPa, nu = 0.3) as an HCP lattice or a random close
 // packing, compressed by a prescribed end displacement. The supports are those of the thesis'
 // compression test (examples/compression_random.prm): the x- end on rollers (ux), two corner
