@@ -4,7 +4,7 @@
 #include "app/input/dem_parameters.h"
 #include "app/job/provenance.h"
 #include "app/studies/verify.h"
-#include "app/studies/verify_model.h"
+#include "app/studies/verify_report.h"
 #include <sstream>
 
 namespace dembridge::app
