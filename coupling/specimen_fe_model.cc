@@ -202,8 +202,7 @@ void set_uniaxial_problem(fem::Parameters& p, const SpecimenTest& t, const json&
   std::uint8_t held_somewhere = t.fixed_components | t.loaded_held_components;
   p.boundary_constraints.push_back({t.fixed_face, component_set(t.fixed_components), 0.0});
   if (t.loaded_held_components)
-    p.boundary_constraints.push_back(
-        {t.loaded_face, component_set(t.loaded_held_components), 0.0});
+    p.boundary_constraints.push_back({t.loaded_face, component_set(t.loaded_held_components), 0.0});
   if (t.displacement_control)
     for (int d = 0; d < 3; ++d)
       if (t.load_components & (1u << d))

@@ -1,7 +1,7 @@
 // The FEM section as case-file text (see parameters_text.h): the inverse of parse_parameters.
 #include "fem/parameters_text.h"
-#include <deal.II/base/parameter_handler.h>
 #include <cstdlib>
+#include <deal.II/base/parameter_handler.h>
 #include <iomanip>
 #include <sstream>
 
@@ -93,7 +93,8 @@ void write_mesh(SectionWriter& w, const Parameters& p)
     has_remove_box = has_remove_box && p.remove_upper[d] > p.remove_lower[d];
   w.set("remove box", has_remove_box ? segment_text(p.remove_lower, p.remove_upper) : "");
   w.set("fit planes", p.fit_planes ? "true" : "false");
-  w.set("patches", joined(p.patches, "; ", [](const BoundaryPatch& b)
+  w.set("patches", joined(p.patches, "; ",
+                          [](const BoundaryPatch& b)
                           { return b.name + ": " + segment_text(b.lower, b.upper); }));
   w.leave();
 }
@@ -122,19 +123,24 @@ void write_constraints_and_loads(SectionWriter& w, const Parameters& p)
                                return c.boundary + ": " + components_text(c.components) +
                                       (c.value != 0 ? " = " + number_text(c.value) : "");
                              }));
-  w.set("lines", joined(p.line_constraints, "; ", [](const LineConstraint& c)
+  w.set("lines", joined(p.line_constraints, "; ",
+                        [](const LineConstraint& c)
                         { return segment_text(c.a, c.b) + ": " + components_text(c.components); }));
-  w.set("points", joined(p.point_constraints, "; ", [](const PointConstraint& c)
+  w.set("points", joined(p.point_constraints, "; ",
+                         [](const PointConstraint& c)
                          { return point_text(c.p) + ": " + components_text(c.components); }));
   w.leave();
   w.enter("Loads");
-  auto boundary_load = [](const BoundaryLoad& l) { return l.boundary + ": " + point_text(l.vector); };
+  auto boundary_load = [](const BoundaryLoad& l)
+  { return l.boundary + ": " + point_text(l.vector); };
   w.set("boundary forces", joined(p.boundary_forces, "; ", boundary_load));
   w.set("tractions", joined(p.tractions, "; ", boundary_load));
-  w.set("line forces", joined(p.line_forces, "; ", [](const LineLoad& l)
+  w.set("line forces", joined(p.line_forces, "; ",
+                              [](const LineLoad& l)
                               { return segment_text(l.a, l.b) + ": " + point_text(l.force); }));
-  w.set("point forces", joined(p.point_forces, "; ", [](const PointLoad& l)
-                               { return point_text(l.p) + ": " + point_text(l.force); }));
+  w.set("point forces",
+        joined(p.point_forces, "; ",
+               [](const PointLoad& l) { return point_text(l.p) + ": " + point_text(l.force); }));
   w.set("body force", point_text(p.body_force));
   w.leave();
 }
@@ -150,8 +156,9 @@ void write_measurements(SectionWriter& w, const Parameters& p)
   w.set("loaded boundary", p.loaded_boundary);
   w.set("reaction boundaries",
         joined(p.reaction_boundaries, ", ", [](const std::string& s) { return s; }));
-  w.set("point groups", joined(p.point_groups, " | ", [](const PointGroup& g)
-                               { return g.name + ": " + points_text(g.points); }));
+  w.set("point groups",
+        joined(p.point_groups, " | ",
+               [](const PointGroup& g) { return g.name + ": " + points_text(g.points); }));
   std::string layers;
   if (p.stress_layer_axis >= 0)
     layers = std::string(1, char('x' + p.stress_layer_axis)) + ": " +

@@ -14,13 +14,13 @@ namespace dembridge::fem
 {
 struct ReactionMeasurement
 {
-  dealii::Tensor<1, 3> reaction;   ///< N, the support's force on the body
-  double reaction_along = 0;       ///< N, reaction . e
+  dealii::Tensor<1, 3> reaction;    ///< N, the support's force on the body
+  double reaction_along = 0;        ///< N, reaction . e
   bool has_loaded_boundary = false; ///< the fields below are set
-  double area = 0;                 ///< m^2, of the reaction boundary
-  double gauge_length = 0;         ///< m, L0
-  double elongation = 0;           ///< m, dL
-  double youngs_modulus = 0;       ///< Pa; infinite or NaN when dL = 0 (callers say so)
+  double area = 0;                  ///< m^2, of the reaction boundary
+  double gauge_length = 0;          ///< m, L0
+  double elongation = 0;            ///< m, dL
+  double youngs_modulus = 0;        ///< Pa; infinite or NaN when dL = 0 (callers say so)
 };
 
 /// None without FEM/Measurements/reaction boundary; throws std::runtime_error naming the key

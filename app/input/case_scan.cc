@@ -90,9 +90,9 @@ void for_each_prm_line(const std::string& text, const std::function<void(const P
   }
 }
 
-std::string rewrite_prm_lines(
-    const std::string& text,
-    const std::function<std::optional<std::string>(const PrmLine&)>& rewrite)
+std::string
+rewrite_prm_lines(const std::string& text,
+                  const std::function<std::optional<std::string>(const PrmLine&)>& rewrite)
 {
   std::ostringstream out;
   for_each_prm_line(text,

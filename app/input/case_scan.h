@@ -30,10 +30,10 @@ struct PrmLine
   /// other: the enclosing subsections
   std::vector<std::string> path;
   bool well_formed = false; ///< set: has '=' (deal.II reports a set line without one)
-  std::string key;   ///< set: the entry's name
-  std::string value; ///< set: the value, trimmed (not collapsed: deal.II keeps its blanks)
-  int line = 0;      ///< the first physical line, 1-based
-  std::string text;  ///< the physical line(s) as written, joined by '\n'
+  std::string key;          ///< set: the entry's name
+  std::string value;        ///< set: the value, trimmed (not collapsed: deal.II keeps its blanks)
+  int line = 0;             ///< the first physical line, 1-based
+  std::string text;         ///< the physical line(s) as written, joined by '\n'
 };
 
 /// Calls @p visit for every logical line of @p text, in order. The one reader of .prm text in
@@ -43,9 +43,9 @@ void for_each_prm_line(const std::string& text, const std::function<void(const P
 
 /// @p text with each logical line replaced by what @p rewrite returns for it (its `text` to keep
 /// it, an empty optional to drop it); lines end in '\n'.
-std::string rewrite_prm_lines(
-    const std::string& text,
-    const std::function<std::optional<std::string>(const PrmLine&)>& rewrite);
+std::string
+rewrite_prm_lines(const std::string& text,
+                  const std::function<std::optional<std::string>(const PrmLine&)>& rewrite);
 
 /// "Section/Sub/key" -> value of every set line.
 std::map<std::string, std::string> prm_entries(const std::string& text);

@@ -1,9 +1,9 @@
 #include "app/output/coupled_figures.h"
 #include "app/output/crack_output.h"
 #include "app/output/result_warnings.h"
+#include "coupling/fixed_region.h"
 #include "coupling/measurements.h"
 #include "dem/measurements/measurements.h"
-#include "coupling/fixed_region.h"
 #include "fem/reaction_measurement.h"
 #include <algorithm>
 

@@ -10,10 +10,10 @@
 #include "dem/model/groups.h"
 #include "dem/model/model.h"
 #ifdef DEMBRIDGE_HAVE_FEM
+#include "app/studies/verify_rows.h"
 #include "coupling/specimen_fe_model.h"
 #include "fem/fem_case.h"
 #include "fem/parameters_text.h"
-#include "app/studies/verify_rows.h"
 #endif
 #include <cmath>
 #include <cstdio>
@@ -112,7 +112,6 @@ json read_json_file(const std::string& file, const std::string& what)
   }
 }
 
-
 #ifdef DEMBRIDGE_HAVE_FEM
 namespace
 {
@@ -199,8 +198,8 @@ std::optional<ElasticConstants> given_material(const VerifyOptions& o, const Ver
   }
   else if (in.measured_tensor)
   {
-    material = material_from_tensor(*in.measured_tensor, in.case_name +
-                                                             ": measured stiffness tensor");
+    material =
+        material_from_tensor(*in.measured_tensor, in.case_name + ": measured stiffness tensor");
     material->source = "measured on this case's packing (dem/measurements/elasticity_tensor.h)";
   }
   else if (in.test.test != "uniaxial")
@@ -272,7 +271,7 @@ json run_fe(const VerifyInputs& in, const ElasticConstants& material, const json
   {
     dem::OutputFile out(fe_dir / "case.prm"); // failures name the file and the reason
     out << fem::case_file_text(parameters, {"Derived by `dembridge verify` from the DEM case " +
-                                                in.case_name + "; runnable with `dembridge run`."});
+                                            in.case_name + "; runnable with `dembridge run`."});
     out.close();
   }
   std::printf("verify: step 2 of 2, the FE model of the specimen (E = %.6g Pa, nu = %.4g; into "
@@ -307,14 +306,14 @@ std::string constants_text(const ElasticConstants& material)
 
 json material_json(const ElasticConstants& material)
 {
-  json m = {{"youngs_modulus", material.youngs_modulus},
-            {"poisson_ratio", material.poisson_ratio},
-            {"shear_modulus",
-             material.shear_modulus > 0 ? json(material.shear_modulus) : json(nullptr)},
-            {"symmetry", material.stiffness_tensor    ? "anisotropic (6x6 tensor)"
-                         : material.shear_modulus > 0 ? "cubic"
-                                                      : "isotropic"},
-            {"source", material.source}};
+  json m = {
+      {"youngs_modulus", material.youngs_modulus},
+      {"poisson_ratio", material.poisson_ratio},
+      {"shear_modulus", material.shear_modulus > 0 ? json(material.shear_modulus) : json(nullptr)},
+      {"symmetry", material.stiffness_tensor    ? "anisotropic (6x6 tensor)"
+                   : material.shear_modulus > 0 ? "cubic"
+                                                : "isotropic"},
+      {"source", material.source}};
   if (material.stiffness_tensor)
   {
     json rows = json::array();
@@ -358,8 +357,7 @@ json stress_layers_json(const Report& report)
 }
 
 json verification_summary(const VerifyOptions& o, const VerifyInputs& in,
-                          const ElasticConstants& material, const json& fe,
-                          const Report& report)
+                          const ElasticConstants& material, const json& fe, const Report& report)
 {
   const SpecimenTest& t = in.test;
   json summary;
@@ -435,7 +433,8 @@ int verify(const VerifyOptions& o)
     json measured = dem;
     if (const auto e = dem_youngs_modulus(in.test, dem))
       measured["youngs_modulus"] = *e;
-    material = material_from_summary(measured, "DEM summary (uniaxial run of " + in.case_name + ")");
+    material =
+        material_from_summary(measured, "DEM summary (uniaxial run of " + in.case_name + ")");
     material->source = "this DEM run";
   }
   if (o.shear_modulus)

@@ -1,8 +1,8 @@
 #pragma once
 // dembridge verify: the rows of the side-by-side report, read from the DEM and the FE summaries
 // of the same specimen test (coupling/specimen_fe_model.h). Internal to app/verify.cc.
-#include "coupling/specimen_fe_model.h"
 #include "app/studies/verify_report.h"
+#include "coupling/specimen_fe_model.h"
 #include <nlohmann/json.hpp>
 #include <optional>
 

@@ -7,8 +7,8 @@
 //  3. each FE case file given on the command line (the examples) does likewise.
 #include "fem/parameters.h"
 #include "fem/parameters_text.h"
-#include <deal.II/base/parameter_handler.h>
 #include <cstdio>
+#include <deal.II/base/parameter_handler.h>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -69,30 +69,26 @@ bool same_points(const std::vector<Point<3>>& a, const std::vector<Point<3>>& b)
 /// Every field, compared exactly.
 bool same(const Parameters& a, const Parameters& b)
 {
-  bool ok = a.problem == b.problem && a.degree == b.degree &&
-            a.incompatible_modes == b.incompatible_modes && a.mesh_source == b.mesh_source &&
-            a.mesh_file == b.mesh_file && a.box_lower == b.box_lower &&
-            a.box_upper == b.box_upper && a.subdivisions == b.subdivisions &&
-            a.refinements == b.refinements && a.remove_lower == b.remove_lower &&
-            a.remove_upper == b.remove_upper && a.fit_planes == b.fit_planes &&
-            a.material == b.material && a.youngs_modulus == b.youngs_modulus &&
-            a.poisson_ratio == b.poisson_ratio && a.density == b.density &&
-            a.voigt_stiffness == b.voigt_stiffness && a.body_force == b.body_force &&
-            a.solver_tolerance == b.solver_tolerance && a.max_iterations == b.max_iterations &&
-            a.amg_strong_threshold == b.amg_strong_threshold && a.n_steps == b.n_steps &&
-            a.time_step_factor == b.time_step_factor &&
-            a.initial_displacement == b.initial_displacement &&
-            same_points(a.probe_points, b.probe_points) &&
-            a.deflection_name == b.deflection_name &&
-            same_points(a.deflection_points, b.deflection_points) &&
-            a.deflection_direction == b.deflection_direction &&
-            a.reaction_boundary == b.reaction_boundary &&
-            a.reaction_direction == b.reaction_direction &&
-            a.loaded_boundary == b.loaded_boundary &&
-            a.reaction_boundaries == b.reaction_boundaries &&
-            a.stress_layer_axis == b.stress_layer_axis &&
-            a.stress_layer_edges == b.stress_layer_edges && a.write_vtu == b.write_vtu &&
-            a.base_name == b.base_name && a.output_every == b.output_every;
+  bool ok =
+      a.problem == b.problem && a.degree == b.degree &&
+      a.incompatible_modes == b.incompatible_modes && a.mesh_source == b.mesh_source &&
+      a.mesh_file == b.mesh_file && a.box_lower == b.box_lower && a.box_upper == b.box_upper &&
+      a.subdivisions == b.subdivisions && a.refinements == b.refinements &&
+      a.remove_lower == b.remove_lower && a.remove_upper == b.remove_upper &&
+      a.fit_planes == b.fit_planes && a.material == b.material &&
+      a.youngs_modulus == b.youngs_modulus && a.poisson_ratio == b.poisson_ratio &&
+      a.density == b.density && a.voigt_stiffness == b.voigt_stiffness &&
+      a.body_force == b.body_force && a.solver_tolerance == b.solver_tolerance &&
+      a.max_iterations == b.max_iterations && a.amg_strong_threshold == b.amg_strong_threshold &&
+      a.n_steps == b.n_steps && a.time_step_factor == b.time_step_factor &&
+      a.initial_displacement == b.initial_displacement &&
+      same_points(a.probe_points, b.probe_points) && a.deflection_name == b.deflection_name &&
+      same_points(a.deflection_points, b.deflection_points) &&
+      a.deflection_direction == b.deflection_direction &&
+      a.reaction_boundary == b.reaction_boundary && a.reaction_direction == b.reaction_direction &&
+      a.loaded_boundary == b.loaded_boundary && a.reaction_boundaries == b.reaction_boundaries &&
+      a.stress_layer_axis == b.stress_layer_axis && a.stress_layer_edges == b.stress_layer_edges &&
+      a.write_vtu == b.write_vtu && a.base_name == b.base_name && a.output_every == b.output_every;
   ok = ok && a.patches.size() == b.patches.size();
   for (std::size_t i = 0; ok && i < a.patches.size(); ++i)
     ok = a.patches[i].name == b.patches[i].name && a.patches[i].lower == b.patches[i].lower &&
@@ -217,7 +213,8 @@ int main(int argc, char** argv)
 
   check_round_trip(default_parameters(), "the defaults");
   const Parameters rich = parse_text(rich_case);
-  check(rich.box_upper[1] == 0.1 + 0.2 && rich.boundary_constraints[1].value == -1.2345678901234567e-5,
+  check(rich.box_upper[1] == 0.1 + 0.2 &&
+            rich.boundary_constraints[1].value == -1.2345678901234567e-5,
         "the rich case holds its 17-digit numbers");
   check_round_trip(rich, "a case with every list set");
   for (int i = 1; i < argc; ++i)
