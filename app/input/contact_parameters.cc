@@ -1,6 +1,6 @@
 #include "app/input/contact_parameters.h"
 #include "app/input/dem_parameters.h"
-#include "dem/core/number_list.h"
+#include "app/input/parameter_values.h"
 #include <algorithm>
 #include <limits>
 
@@ -10,19 +10,8 @@ using dealii::ParameterHandler;
 using dealii::Patterns::Anything;
 using dealii::Patterns::Bool;
 using dealii::Patterns::Double;
-using dealii::Patterns::List;
 using dealii::Patterns::Selection;
 namespace dem = dembridge::dem;
-
-namespace
-{
-const List vector3(Double(), 3, 3);
-
-dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
-{
-  return dem::parse_vec3(prm.get(key), key);
-}
-} // namespace
 
 void declare_contact_parameters(ParameterHandler& prm)
 {

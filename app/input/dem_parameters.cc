@@ -2,7 +2,7 @@
 #include "app/input/contact_parameters.h"
 #include "app/input/damage_parameters.h"
 #include "app/input/microstructure_parameters.h"
-#include "dem/core/number_list.h"
+#include "app/input/parameter_values.h"
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -18,21 +18,6 @@ using dealii::Patterns::Integer;
 using dealii::Patterns::List;
 using dealii::Patterns::Selection;
 namespace dem = dembridge::dem;
-
-namespace
-{
-const List vector3(Double(), 3, 3);
-
-dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
-{
-  return dem::parse_vec3(prm.get(key), key);
-}
-
-std::vector<double> get_doubles(ParameterHandler& prm, const std::string& key)
-{
-  return dem::parse_numbers(prm.get(key), key);
-}
-} // namespace
 
 std::vector<std::string> split_names(const std::string& text)
 {

@@ -1,5 +1,5 @@
 #include "app/input/microstructure_parameters.h"
-#include "dem/core/number_list.h"
+#include "app/input/parameter_values.h"
 #include <sstream>
 
 namespace dembridge::app
@@ -14,13 +14,6 @@ namespace dem = dembridge::dem;
 
 namespace
 {
-const List vector3(Double(), 3, 3);
-
-dem::Vec3 get_vec3(ParameterHandler& prm, const std::string& key)
-{
-  return dem::parse_vec3(prm.get(key), key);
-}
-
 /// The classes a case file names, with the keys each takes over from Bonds or Damage.
 const char* const class_sections[] = {"Bond class grain_boundary", "Bond class weak_plane"};
 
