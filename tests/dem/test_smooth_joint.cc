@@ -199,10 +199,10 @@ TEST(SmoothJoint, RigidBlockShearIsIndependentOfTheTilt)
     const ShearResult plain = rigid_block_shear(theta * deg, false);
     const double peak = tau_c * joint.area;
     std::cout << "theta " << theta << ": " << joint.crossing
-              << " crossing bonds; per bond stiffness / k_s: smooth " << joint.stiffness / joint.ks
-              << ", plain " << plain.stiffness / joint.ks << "; peak / (tau_c A): smooth "
-              << joint.peak / peak << ", plain " << plain.peak / peak << "; solver vs kernel "
-              << joint.record_mismatch << "\n";
+              << " crossing bonds; per bond stiffness / k_s: smooth 1 + "
+              << joint.stiffness / joint.ks - 1 << ", plain " << plain.stiffness / joint.ks
+              << "; peak / (tau_c A): smooth " << joint.peak / peak << ", plain "
+              << plain.peak / peak << "; solver vs kernel " << joint.record_mismatch << "\n";
     EXPECT_GT(joint.crossing, 20);
     EXPECT_NEAR(joint.stiffness / joint.ks, 1.0, 1e-5);
     EXPECT_LE(joint.peak / peak, 1.0 + 1e-9);
