@@ -210,6 +210,9 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
   }
   handler_.update_cached_numbers();
   // the bonds with an owned end, as records
+  if (model.bonds.has_smooth_joints()) // the records carry no bond classes
+    throw dem::InputError("Bond class weak_plane/smooth joint: not available in a distributed "
+                          "(MPI) run yet; run it on one rank");
   bonds_.failure = model.bonds.failure;
   bonds_.drop_force_records();
   const std::size_t size = bond_record_size(bonds_);

@@ -6,6 +6,7 @@ namespace dembridge::app
 {
 using dealii::ParameterHandler;
 using dealii::Patterns::Anything;
+using dealii::Patterns::Bool;
 using dealii::Patterns::Double;
 using dealii::Patterns::Integer;
 using dealii::Patterns::List;
@@ -92,6 +93,15 @@ void declare_microstructure_parameters(ParameterHandler& prm)
                             ", for this class (mean; the scatter is Damage's); empty: the Damage "
                             "value. The failure law, friction angle, moment factor and fracture "
                             "energies are the specimen's (Damage).");
+    if (std::string(section) == "Bond class weak_plane")
+      prm.declare_entry(
+          "smooth joint", "false", Bool(),
+          "true: each weak-plane bond is a smooth joint (PFC's smooth-joint model, YADE's "
+          "JCFpm): it splits its force into normal and shear against the plane's normal, not "
+          "its own axis, and fails on those (tensile strength against the normal stress, shear "
+          "strength or cohesion against the shear stress), carrying no couple; so the plane's "
+          "stiffness and strength do not depend on how particles sit across it. false: the "
+          "bonds follow the bond law along their own axes, as the other classes.");
     prm.leave_subsection();
   }
 }
@@ -164,7 +174,14 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     cls.tensile_strength = value("tensile strength", cls.tensile_strength);
     cls.shear_strength = value("shear strength", cls.shear_strength);
     cls.cohesion = value("cohesion", cls.cohesion);
+    const bool smooth = k == 1 && prm.get_bool("smooth joint");
     prm.leave_subsection();
+    if (smooth && !has_class[k])
+      throw dem::InputError(section +
+                            "/smooth joint: true, but the case has no weak-plane bonds (" +
+                            needs[k] + " makes them)");
+    if (smooth)
+      c.smooth_joint = true;
     if (set && !has_class[k])
       throw dem::InputError(section + "/" + first_set + ": set, but the case has no such bonds (" +
                             needs[k] + " makes them)");

@@ -87,7 +87,9 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
     {
       pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
       const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
-      const dem::Vec3 e = (xb - xa).normalized();
+      dem::Vec3 e = (xb - xa).normalized();
+      if (const dem::Vec3* N = b.joint_normal(k)) // a smooth joint's split (smooth_joint.h)
+        e = N->dot(e) < 0 ? dem::Vec3(-*N) : *N;
       // evaluated here from the written configuration (no per-bond records kept by the run);
       // a broken bond carries nothing
       const dem::BondContactForce contact = dem::bond_contact_force(p, b, k);

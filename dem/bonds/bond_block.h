@@ -45,6 +45,10 @@ struct BondLawArrays
   const double *x, *q, *v, *w;
   const std::int32_t *a, *b;
   const double *L0, *e0, *kn, *ks, *ktor, *kben, *s, *ct, *cr;
+  /// Smooth joints (smooth_joint.h): the classes (the weak-plane bonds are the joints) and the
+  /// planes' normal N; null and zero without joints.
+  const BondClass* bond_class;
+  double joint_normal[3];
 
   BondLawArrays(const ParticleStore& p, const BondStore& bonds)
       : x(raw_doubles(p.position)), q(raw_doubles(p.orientation)), v(raw_doubles(p.velocity)),
@@ -52,8 +56,12 @@ struct BondLawArrays
         L0(bonds.rest_length.data()), e0(raw_doubles(bonds.rest_axis)), kn(bonds.kn.data()),
         ks(bonds.ks.data()), ktor(bonds.ktor.data()), kben(bonds.kben.data()),
         s(bonds.contact_fraction.data()), ct(bonds.damping_force.data()),
-        cr(bonds.damping_moment.data())
+        cr(bonds.damping_moment.data()),
+        bond_class(bonds.has_smooth_joints() ? bonds.bond_class.data() : nullptr), joint_normal{}
   {
+    if (bonds.has_smooth_joints())
+      for (int d = 0; d < 3; ++d)
+        joint_normal[d] = (*bonds.smooth_joint_normal)[d];
   }
 };
 
@@ -105,6 +113,7 @@ struct alignas(64) BondBlock
 {
   static constexpr int W = bond_block_width;
   double Fc[3][W], Mc[3][W], Fd[3][W], Md[3][W], e[3][W];
+  double n[3][W]; ///< the failure check's axis (BondForcesOf::n); written with smooth joints only
   double ra[W], rb[W], strain_energy[W];
   /// Bond j's records (particle_record_size) for its lower- and higher-numbered particle:
   /// lower[j] = (-Fc, Ma, -Fd, Mda) when a < b, else (Fc, Mb, Fd, Mdb); upper[j] the other end,
@@ -122,6 +131,12 @@ struct alignas(64) BondBlock
       f.e[d] = e[d][j];
     }
     f.ra = ra[j], f.rb = rb[j], f.strain_energy = strain_energy[j];
+  }
+  /// Lane j's failure axis (written by a block with smooth joints only).
+  void lane_axis(int j, BondForces& f) const
+  {
+    for (int d = 0; d < 3; ++d)
+      f.n[d] = n[d][j];
   }
 };
 
@@ -215,10 +230,47 @@ template <int S>
   return v;
 }
 
+/// The law on a block's lanes; with `smooth`, the weak-plane bonds among them are smooth joints
+/// (smooth_joint.h: n_0 = sign(N . e_0) N, eq. 5), and f.n is written for every lane.
+template <bool dashpots, bool smooth>
+[[gnu::always_inline]] inline void
+block_law(const BondLawArrays& in, std::size_t k0, const std::int32_t* bond, const Lanes* xa,
+          const Lanes* xb, const Lanes* qa, const Lanes* qb, const Lanes* va, const Lanes* vb,
+          const Lanes* wa, const Lanes* wb, const Lanes* e0, const LawConstants<Lanes>& c,
+          BondForcesOf<Lanes>& f)
+{
+  if constexpr (smooth)
+  {
+    JointOf<Lanes> joint;
+    bool any = false;
+    for (int j = 0; j < BondBlock::W; ++j)
+    {
+      const bool on = in.bond_class[k0 + std::size_t(bond[j])] == BondClass::weak_plane;
+      joint.on[j] = on ? -1 : 0, any |= on;
+    }
+    if (any) // why: a block without joints runs the unified law alone
+    {
+      const double* N = in.joint_normal;
+      const LaneIndices flip = N[0] * e0[0] + N[1] * e0[1] + N[2] * e0[2] < 0;
+      const Lanes sign = flip ? Lanes{} - 1.0 : Lanes{} + 1.0;
+      for (int d = 0; d < 3; ++d)
+        joint.n0[d] = sign * N[d];
+      bond_law_of<dashpots, true>(xa, xb, qa, qb, va, vb, wa, wb, c, f, &joint);
+      return;
+    }
+    bond_law_of<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, c, f);
+    for (int d = 0; d < 3; ++d)
+      f.n[d] = f.e[d];
+  }
+  else
+    bond_law_of<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, c, f);
+}
+
 /// Evaluates bonds k0 .. k0 + m - 1 (m <= W) into @p out: the records always, the rows when
 /// @p rows (steps that record forces or test failure). Everything from the gather to the
-/// records stays in registers.
-template <bool dashpots, bool rows>
+/// records stays in registers. With `smooth`, the weak-plane bonds are smooth joints
+/// (BondLawArrays::bond_class) and the rows hold their failure axes.
+template <bool dashpots, bool rows, bool smooth = false>
 inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondBlock& out)
 {
   constexpr int W = BondBlock::W;
@@ -258,7 +310,7 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
                               dashpots ? load_lanes(in.ct + k0, m) : Lanes{},
                               dashpots ? load_lanes(in.cr + k0, m) : Lanes{}};
   BondForcesOf<Lanes> f;
-  bond_law_of<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, c, f);
+  block_law<dashpots, smooth>(in, k0, bond, xa, xb, qa, qb, va, vb, wa, wb, e0, c, f);
   Lanes ma[3], mb[3], mda[3]{}, mdb[3]{};
   resultant_moments(f.Fc, f.Mc, f, ma, mb);
   if constexpr (dashpots)
@@ -280,6 +332,9 @@ inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondB
       put(out.Md[d], f.Md[d]), put(out.e[d], f.e[d]);
     }
     put(out.ra, f.ra), put(out.rb, f.rb), put(out.strain_energy, f.strain_energy);
+    if constexpr (smooth)
+      for (int d = 0; d < 3; ++d)
+        put(out.n[d], f.n[d]);
   }
 }
 } // namespace dembridge::dem

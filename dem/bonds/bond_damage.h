@@ -78,7 +78,7 @@ struct CrackEvent
   std::size_t bond = 0;         ///< index in the BondStore (solver order)
   int a = 0, b = 0;             ///< the particles' user ids (ParticleStore::id)
   Vec3 midpoint = Vec3::Zero(); ///< between the particle centres at failure, m
-  Vec3 axis = Vec3::UnitX();    ///< unit, a -> b, at failure
+  Vec3 axis = Vec3::UnitX();    ///< unit, a -> b, at failure (a smooth joint: its plane's normal)
   CrackMode mode = CrackMode::tension;
   double energy = 0; ///< J: strain energy released (brittle) or dissipated in softening
 };

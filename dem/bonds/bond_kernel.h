@@ -24,6 +24,7 @@
 //   F_a -= F_c,  M_a += -M_c + r_ac x (-F_c),   r_ac = s L e
 //   F_b += F_c,  M_b +=  M_c + r_bc x F_c,      r_bc = -(1-s) L e
 // which conserve linear and angular momentum exactly.
+#include "dem/bonds/smooth_joint.h"
 #include "dem/core/lanes.h"
 #include "dem/core/types.h"
 #include <cmath>
@@ -51,20 +52,50 @@ template <class T> struct BondForcesOf
   T Fc[3], Mc[3]; ///< elastic + dashpot
   T Fd[3], Md[3]; ///< dashpot parts (zero without dashpots)
   T e[3];         ///< current bond axis a -> b
-  T ra, rb;       ///< signed distances of the contact point from a and b along e
+  /// The axis the failure check splits the force against: e, or a smooth joint's current
+  /// normal (smooth_joint.h). Written by the smooth-joint law and the scalar bond_law only.
+  T n[3];
+  T ra, rb; ///< signed distances of the contact point from a and b along e
   T strain_energy;
 };
 using BondForces = BondForcesOf<double>;
+
+/// A smooth joint's input to the law (smooth_joint.h), one bond (T = double) or a block's lanes:
+/// the signed formation normal n_0 of eq. (5), and whether the bond (lane) is a joint (-1 / 0
+/// lane masks for `mask ? x : y`).
+template <class T> struct JointOf
+{
+  T n0[3];
+  bool on;
+};
+template <> struct JointOf<Lanes>
+{
+  Lanes n0[3];
+  LaneIndices on;
+};
+
+inline double lane_select(bool c, double x, double y)
+{
+  return c ? x : y;
+}
+
+inline Lanes lane_select(LaneIndices c, Lanes x, Lanes y)
+{
+  return c ? x : y;
+}
 
 /// The unified law, for one bond (T = double) or for the lanes of a block (T = Lanes): the same
 /// source for both, so each lane computes what the scalar kernel computes for its bond (up to
 /// the compiler's fused multiply-adds). Written without vector temporaries (about twice as fast
 /// as the same expressions in Eigen 3-vectors). Quaternions are read in Eigen's storage order
-/// (x, y, z, w). Without dashpots the velocities are not read.
-template <bool dashpots, class T>
+/// (x, y, z, w). Without dashpots the velocities are not read. With `smooth`, the bonds (lanes)
+/// that @p joint marks are smooth joints (smooth_joint.h); without, @p joint is not read and the
+/// law is the unified one, instruction for instruction.
+template <bool dashpots, bool smooth = false, class T>
 [[gnu::always_inline]] inline void bond_law_of(const T* xa, const T* xb, const T* qa, const T* qb,
                                                const T* va, const T* vb, const T* wa, const T* wb,
-                                               const LawConstants<T>& c, BondForcesOf<T>& out)
+                                               const LawConstants<T>& c, BondForcesOf<T>& out,
+                                               const JointOf<T>* joint = nullptr)
 {
   const T dx = xb[0] - xa[0], dy = xb[1] - xa[1], dz = xb[2] - xa[2];
   const T L = lane_sqrt(dx * dx + dy * dy + dz * dz), iL = 1.0 / L;
@@ -114,6 +145,22 @@ template <bool dashpots, class T>
   out.rb = (s - 1.0) * L;
   out.strain_energy = 0.5 * (c.kn * dn * dn + c.ks * (dsx * dsx + dsy * dsy + dsz * dsz) +
                              c.ktor * tw * tw + c.kben * (rotx * rotx + roty * roty + rotz * rotz));
+  if constexpr (smooth)
+  {
+    // the joint's lanes: eq. (2)-(5) of smooth_joint.h on D = delta_n e + delta_s
+    T n[3], F[3], U;
+    joint_normal_now(qa, qb, joint->n0, n);
+    const T D[3] = {dn * ex + dsx, dn * ey + dsy, dn * ez + dsz};
+    smooth_joint_force(D, n, c.kn, c.ks, F, U);
+    const T e[3] = {ex, ey, ez};
+    for (int d = 0; d < 3; ++d)
+    {
+      out.Fc[d] = lane_select(joint->on, F[d], out.Fc[d]);
+      out.Mc[d] = lane_select(joint->on, T{}, out.Mc[d]);
+      out.n[d] = lane_select(joint->on, n[d], e[d]);
+    }
+    out.strain_energy = lane_select(joint->on, U, out.strain_energy);
+  }
   if constexpr (dashpots)
   {
     // v_cr = (v_a + w_a x r_ac) - (v_b + w_b x r_bc) (eq. 6), w_cr = w_a - w_b (eq. 7)
@@ -136,15 +183,26 @@ template <bool dashpots, class T>
 }
 
 /// The unified law for one bond: the scalar kernel (tests, tools, the per-bond measurements).
+/// With @p joint_normal (N, unit), the bond is a smooth joint across the plane of normal N
+/// (smooth_joint.h).
 template <bool dashpots>
-[[gnu::always_inline]] inline void bond_law(const double* xa, const double* xb, const double* qa,
-                                            const double* qb, const double* va, const double* vb,
-                                            const double* wa, const double* wb,
-                                            const BondConstants& c, BondForces& out)
+[[gnu::always_inline]] inline void
+bond_law(const double* xa, const double* xb, const double* qa, const double* qb, const double* va,
+         const double* vb, const double* wa, const double* wb, const BondConstants& c,
+         BondForces& out, const Vec3* joint_normal = nullptr)
 {
   const LawConstants<double> k{
       c.L0, {c.e0[0], c.e0[1], c.e0[2]}, c.kn, c.ks, c.ktor, c.kben, c.s, c.ct, c.cr};
+  if (joint_normal)
+  {
+    const double sign = joint_normal->dot(c.e0) < 0 ? -1.0 : 1.0; // eq. (5)
+    const JointOf<double> j{
+        {sign * joint_normal->x(), sign * joint_normal->y(), sign * joint_normal->z()}, true};
+    bond_law_of<dashpots, true>(xa, xb, qa, qb, va, vb, wa, wb, k, out, &j);
+    return;
+  }
   bond_law_of<dashpots>(xa, xb, qa, qb, va, vb, wa, wb, k, out);
+  out.n[0] = out.e[0], out.n[1] = out.e[1], out.n[2] = out.e[2];
 }
 
 /// The particle resultants' moments (Table 8) of a contact force F and couple M acting on b at
@@ -186,12 +244,14 @@ struct BondResult
   double strain_energy; ///< elastic energy stored in the bond, J
 };
 
+/// With @p joint_normal: a smooth joint (smooth_joint.h).
 template <bool dashpots = true>
-inline BondResult evaluate_bond(const BondKinematics& k, const BondConstants& c)
+inline BondResult evaluate_bond(const BondKinematics& k, const BondConstants& c,
+                                const Vec3* joint_normal = nullptr)
 {
   BondForces f;
   bond_law<dashpots>(k.xa.data(), k.xb.data(), k.qa.coeffs().data(), k.qb.coeffs().data(),
-                     k.va.data(), k.vb.data(), k.wa.data(), k.wb.data(), c, f);
+                     k.va.data(), k.vb.data(), k.wa.data(), k.wb.data(), c, f, joint_normal);
   BondResult r;
   r.Fc = Vec3(f.Fc[0], f.Fc[1], f.Fc[2]);
   r.Mc = Vec3(f.Mc[0], f.Mc[1], f.Mc[2]);

@@ -11,13 +11,12 @@ Eigen::Matrix3d skew(const Vec3& v)
   s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return s;
 }
-} // namespace
 
-Matrix12 unified_bond_matrix(const BondStiffness& k, double L)
+/// B maps [u_a, th_a, u_b, th_b] to [delta (3), rotation a - b (3)] at the contact point:
+///   delta = u_a - u_b + th_a x r_ac - th_b x r_bc,  r_ac = s L x, r_bc = -(1-s) L x
+Eigen::Matrix<double, 6, 12> contact_point_map(double s, double L)
 {
-  // B maps [u_a, th_a, u_b, th_b] to [delta (3), rotation a - b (3)] at the contact point:
-  //   delta = u_a - u_b + th_a x r_ac - th_b x r_bc,  r_ac = s L x, r_bc = -(1-s) L x
-  const Vec3 rac(k.contact_fraction * L, 0, 0), rbc((k.contact_fraction - 1.0) * L, 0, 0);
+  const Vec3 rac(s * L, 0, 0), rbc((s - 1.0) * L, 0, 0);
   Eigen::Matrix<double, 6, 12> B = Eigen::Matrix<double, 6, 12>::Zero();
   B.block<3, 3>(0, 0) = Eigen::Matrix3d::Identity();
   B.block<3, 3>(0, 3) = -skew(rac); // th x r = -r x th
@@ -25,9 +24,25 @@ Matrix12 unified_bond_matrix(const BondStiffness& k, double L)
   B.block<3, 3>(0, 9) = skew(rbc);
   B.block<3, 3>(3, 3) = Eigen::Matrix3d::Identity();
   B.block<3, 3>(3, 9) = -Eigen::Matrix3d::Identity();
+  return B;
+}
+} // namespace
+
+Matrix12 unified_bond_matrix(const BondStiffness& k, double L)
+{
+  const Eigen::Matrix<double, 6, 12> B = contact_point_map(k.contact_fraction, L);
   Eigen::Matrix<double, 6, 1> D;
   D << k.kn, k.ks, k.ks, k.ktor, k.kben, k.kben;
   return B.transpose() * D.asDiagonal() * B;
+}
+
+Matrix12 smooth_joint_matrix(const BondStiffness& k, double L, const Vec3& n)
+{
+  const Eigen::Matrix<double, 6, 12> B = contact_point_map(k.contact_fraction, L);
+  Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
+  D.topLeftCorner<3, 3>() =
+      k.kn * n * n.transpose() + k.ks * (Eigen::Matrix3d::Identity() - n * n.transpose());
+  return B.transpose() * D * B;
 }
 
 Matrix12 timoshenko_beam_matrix(double E, double nu, double r, double L)

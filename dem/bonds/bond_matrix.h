@@ -19,6 +19,18 @@ using Vector12 = Eigen::Matrix<double, 12, 1>;
 /// Linearised unified law (forces on the particles = -K u).
 Matrix12 unified_bond_matrix(const BondStiffness& k, double length);
 
+/// Linearised smooth joint (smooth_joint.h eq. 2-3): the unified law's B with
+/// D = [k_n n n^T + k_s (I - n n^T), 0; 0, 0], n the joint's normal in the bond's local frame.
+Matrix12 smooth_joint_matrix(const BondStiffness& k, double length, const Vec3& local_normal);
+
+/// The bond matrix of bond-like constants @p k: a smooth joint's with @p local_normal, else the
+/// unified law's.
+inline Matrix12 bond_matrix(const BondStiffness& k, double length, const Vec3* local_normal)
+{
+  return local_normal ? smooth_joint_matrix(k, length, *local_normal)
+                      : unified_bond_matrix(k, length);
+}
+
 /// Thesis eq. 26-31.
 Matrix12 timoshenko_beam_matrix(double youngs_modulus, double poisson_ratio, double bond_radius,
                                 double length);

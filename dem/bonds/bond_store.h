@@ -7,6 +7,7 @@
 #include "dem/bonds/bond_class.h"
 #include "dem/bonds/bond_damage.h"
 #include "dem/bonds/bond_model.h"
+#include <optional>
 #include <vector>
 
 namespace dembridge::dem
@@ -38,6 +39,9 @@ struct BondStore
   /// The class that chose each bond's constants (bond_class.h); empty without a microstructure
   /// (every bond intra-grain).
   std::vector<BondClass> bond_class;
+  /// With a value N (unit), the weak-plane bonds are smooth joints across planes of normal N
+  /// (bonds/smooth_joint.h); unset: every bond follows the unified law (bond_kernel.h).
+  std::optional<Vec3> smooth_joint_normal;
   // Last recorded contact-point force and couple acting on particle b (global frame); filled
   // on recording steps only (the static run's figures, a coupled run's band check, the tests
   // of the force loop), not on every step. 48 of the 154 bytes of a bond: explicit full-DEM
@@ -68,6 +72,18 @@ struct BondStore
     force_records_dropped = true;
   }
   bool has_failure() const { return failure.mode != FailureMode::none; }
+  bool has_smooth_joints() const { return smooth_joint_normal.has_value() && !bond_class.empty(); }
+  /// Whether bond k is a smooth joint.
+  bool is_smooth_joint(std::size_t k) const
+  {
+    return has_smooth_joints() && bond_class[k] == BondClass::weak_plane;
+  }
+  /// The plane normal bond k resolves its force against (bond_law's joint_normal), null for a
+  /// bond that follows the unified law.
+  const Vec3* joint_normal(std::size_t k) const
+  {
+    return is_smooth_joint(k) ? &*smooth_joint_normal : nullptr;
+  }
   /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
   double load_factor(std::size_t k) const
   {

@@ -27,7 +27,7 @@ BondForces bond_law_now(const ParticleStore& p, const BondStore& b, std::size_t 
   bond_law<dashpots>(p.position[ia].data(), p.position[ib].data(),
                      p.orientation[ia].coeffs().data(), p.orientation[ib].coeffs().data(),
                      p.velocity[ia].data(), p.velocity[ib].data(), p.angular_velocity[ia].data(),
-                     p.angular_velocity[ib].data(), c, f);
+                     p.angular_velocity[ib].data(), c, f, b.joint_normal(k));
   return f;
 }
 
@@ -47,8 +47,10 @@ BondContactForce carried(const BondStore& b, std::size_t k, const BondForces& f)
 /// Force on b of the linearised law: -(K u) restricted to b's translation, K = R K_local R^T.
 Vec3 linear_bond_force(const ParticleStore& p, const BondStore& b, std::size_t k)
 {
-  const Matrix12 K = unified_bond_matrix(b.stiffness(k), b.rest_length[k]);
   const Eigen::Matrix3d R = bond_frame(b.rest_axis[k]);
+  const Vec3* N = b.joint_normal(k);
+  const Vec3 local_normal = N ? Vec3(R.transpose() * *N) : Vec3::Zero();
+  const Matrix12 K = bond_matrix(b.stiffness(k), b.rest_length[k], N ? &local_normal : nullptr);
   Vector12 u; // local components of [u_a, theta_a, u_b, theta_b]
   int block = 0;
   for (int i : {b.a[k], b.b[k]})

@@ -89,6 +89,8 @@ apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig&
       mean_radius += r / double(n);
     check_weak_planes(*planes, 2 * mean_radius, "Microstructure/");
     crossing.assign(planes->offsets.size(), 0);
+    if (config.smooth_joint)
+      b.smooth_joint_normal = planes->normal; // unit (check_weak_planes)
   }
   b.bond_class.assign(nb, BondClass::intra_grain);
   for (std::size_t k = 0; k < nb; ++k)

@@ -48,6 +48,8 @@ struct MicrostructureConfig
   std::optional<WeakPlaneSet> weak_planes;
   /// Grain-boundary and weak-plane bonds; unset: the Bonds and Damage values.
   std::optional<BondClassConfig> grain_boundary, weak_plane;
+  /// The weak-plane bonds are smooth joints (bonds/smooth_joint.h) across the planes.
+  bool smooth_joint = false;
 
   bool enabled() const { return grains.enabled || weak_planes.has_value(); }
 };
@@ -75,7 +77,8 @@ struct MicrostructureSummary
 };
 
 /// Assigns the grains (p.grain) and classes the bonds just formed (bonds.bond_class), giving
-/// each non-intra-grain bond its class's stiffness constants (strengths follow in
+/// each non-intra-grain bond its class's stiffness constants (and with config.smooth_joint the
+/// store the planes' normal, bonds.smooth_joint_normal) (strengths follow in
 /// assign_bond_strengths with class_strength_means). Throws InputError naming the key when the
 /// grains or planes do not fit the packing (column_grains.h, weak_planes.h) or a plane crosses
 /// no bond.

@@ -172,10 +172,12 @@ public:
 
 private:
   template <bool record> void dispatch_bond_forces();
-  template <bool record, bool dashpots, FailureMode failure> void compute_bond_forces();
+  template <bool record, bool dashpots, FailureMode failure, bool smooth>
+  void compute_bond_forces();
   /// On record steps a range adds its strain energy, and the sum of |F_c| and the count of its
-  /// intact bonds (the unbalanced-force ratio); fracture energy on every step.
-  template <bool record, bool dashpots, FailureMode failure>
+  /// intact bonds (the unbalanced-force ratio); fracture energy on every step. `smooth`: the
+  /// store has smooth joints (bonds/smooth_joint.h).
+  template <bool record, bool dashpots, FailureMode failure, bool smooth>
   void bond_range(std::size_t begin, std::size_t end, double& strain, double& fracture,
                   double& intact_force, long& intact, std::vector<CrackEvent>& events);
   void drain_crack_events();

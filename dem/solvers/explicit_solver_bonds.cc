@@ -11,7 +11,7 @@
 
 namespace dembridge::dem
 {
-template <bool record, bool dashpots, FailureMode failure>
+template <bool record, bool dashpots, FailureMode failure, bool smooth>
 void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& strain,
                                 double& fracture, double& intact_force, long& intact,
                                 std::vector<CrackEvent>& events)
@@ -48,7 +48,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   {
     const int m = int(std::min<std::size_t>(BondBlock::W, end - k0));
     // the law in SIMD lanes; the contact-force rows only where they are read below
-    bond_law_block<dashpots, record || failure != FailureMode::none>(arrays, k0, m, block);
+    bond_law_block<dashpots, record || failure != FailureMode::none, smooth>(arrays, k0, m, block);
     for (int j = 0; j < m; ++j) // scatter, failure, records: bond by bond
     {
       const std::size_t k = k0 + std::size_t(j);
@@ -71,7 +71,11 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
         const double Fe[3] = {f.Fc[0] - f.Fd[0], f.Fc[1] - f.Fd[1], f.Fc[2] - f.Fd[2]};
         const double Me[3] = {f.Mc[0] - f.Md[0], f.Mc[1] - f.Md[1], f.Mc[2] - f.Md[2]};
         const double R = b_.radius[k], area = std::numbers::pi * R * R;
-        const SectionLoads loads = section_loads(Fe, Me, f.e, R, law.moment_factor);
+        // a smooth joint's stresses against its plane (smooth_joint.h eq. 6), others' axis
+        const double* axis = f.e;
+        if constexpr (smooth)
+          block.lane_axis(j, f), axis = f.n;
+        const SectionLoads loads = section_loads(Fe, Me, axis, R, law.moment_factor);
         const double tension_cap = b_.tensile_strength[k] * area * R;
         const double shear_cap =
             shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
@@ -180,7 +184,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   end_run();
 }
 
-template <bool record, bool dashpots, FailureMode failure>
+template <bool record, bool dashpots, FailureMode failure, bool smooth>
 void ExplicitSolver::compute_bond_forces()
 {
   double strain = 0, fracture = 0, intact_force = 0;
@@ -193,13 +197,13 @@ void ExplicitSolver::compute_bond_forces()
     auto* buffers = crack_buffers_.data() + phase_buffer_[phase];
 #pragma omp parallel for num_threads(settings_.threads) schedule(static, 1) reduction(+ : strain, fracture, intact_force, intact)
     for (std::size_t r = 0; r < ranges.size(); ++r)
-      bond_range<record, dashpots, failure>(ranges[r].first, ranges[r].second, strain, fracture,
-                                            intact_force, intact, buffers[r]);
+      bond_range<record, dashpots, failure, smooth>(ranges[r].first, ranges[r].second, strain,
+                                                    fracture, intact_force, intact, buffers[r]);
   }
   for (std::size_t r = 0; r < phases_[3].size(); ++r)
-    bond_range<record, dashpots, failure>(phases_[3][r].first, phases_[3][r].second, strain,
-                                          fracture, intact_force, intact,
-                                          crack_buffers_[phase_buffer_[3] + r]);
+    bond_range<record, dashpots, failure, smooth>(phases_[3][r].first, phases_[3][r].second, strain,
+                                                  fracture, intact_force, intact,
+                                                  crack_buffers_[phase_buffer_[3] + r]);
   // the particles' bond resultants from the sums, which are left zero there for the next step
   // (the dashpot parts stay for integrate, which zeroes them after their last use)
   constexpr int S = particle_record_size<dashpots>;
@@ -230,19 +234,26 @@ void ExplicitSolver::compute_bond_forces()
 
 template <bool record> void ExplicitSolver::dispatch_bond_forces()
 {
+  // why: a specimen without smooth joints runs the loop without a word of their code
+  auto run = [&]<FailureMode failure>()
+  {
+    if (b_.has_smooth_joints())
+      dashpots_ ? compute_bond_forces<record, true, failure, true>()
+                : compute_bond_forces<record, false, failure, true>();
+    else
+      dashpots_ ? compute_bond_forces<record, true, failure, false>()
+                : compute_bond_forces<record, false, failure, false>();
+  };
   switch (b_.failure.mode)
   {
   case FailureMode::none:
-    dashpots_ ? compute_bond_forces<record, true, FailureMode::none>()
-              : compute_bond_forces<record, false, FailureMode::none>();
+    run.template operator()<FailureMode::none>();
     break;
   case FailureMode::brittle:
-    dashpots_ ? compute_bond_forces<record, true, FailureMode::brittle>()
-              : compute_bond_forces<record, false, FailureMode::brittle>();
+    run.template operator()<FailureMode::brittle>();
     break;
   case FailureMode::softening:
-    dashpots_ ? compute_bond_forces<record, true, FailureMode::softening>()
-              : compute_bond_forces<record, false, FailureMode::softening>();
+    run.template operator()<FailureMode::softening>();
     break;
   }
 }
@@ -260,6 +271,8 @@ void ExplicitSolver::drain_crack_events()
       const Vec3 &xa = p_.position[c.a], &xb = p_.position[c.b];
       c.midpoint = 0.5 * (xa + xb);
       c.axis = (xb - xa).normalized();
+      if (const Vec3* N = b_.joint_normal(c.bond)) // a joint's crack lies in its plane
+        c.axis = N->dot(c.axis) < 0 ? Vec3(-*N) : *N;
       --p_.coordination[c.a];
       --p_.coordination[c.b];
       const bool booked_here = std::size_t(c.a) < owned_; // a bond held by two ranks logs once
@@ -297,8 +310,12 @@ std::vector<Vec3> ExplicitSolver::dashpot_torques() const
 void ExplicitSolver::evaluate_bond_forces()
 {
   std::fill(particle_sums_.begin(), particle_sums_.end(), 0.0);
-  dashpots_ ? compute_bond_forces<true, true, FailureMode::none>()
-            : compute_bond_forces<true, false, FailureMode::none>();
+  if (b_.has_smooth_joints())
+    dashpots_ ? compute_bond_forces<true, true, FailureMode::none, true>()
+              : compute_bond_forces<true, false, FailureMode::none, true>();
+  else
+    dashpots_ ? compute_bond_forces<true, true, FailureMode::none, false>()
+              : compute_bond_forces<true, false, FailureMode::none, false>();
   sums_hold_evaluation_ = dashpots_; // a step zeroes the dashpot parts first
 }
 

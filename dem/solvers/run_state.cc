@@ -128,6 +128,7 @@ std::vector<std::size_t> visit_bonds(StateArchive& a, BondStore& b)
     order[k] = *it;
   }
   stored.failure = b.failure;
+  stored.smooth_joint_normal = b.smooth_joint_normal; // the case's, as the failure law
   if (!b.records_forces())
     stored.drop_force_records();
   stored.reorder(order);

@@ -94,12 +94,18 @@ BlockMatrix assemble_blocks(const ParticleStore& p, const BondStore& b)
     const std::size_t k = bond_ids[q];
     const std::array<double, 6> key = {
         b.kn[k], b.ks[k], b.ktor[k], b.kben[k], b.contact_fraction[k], b.rest_length[k]};
-    if (key != last_key)
+    const Eigen::Matrix3d R = bond_frame(b.rest_axis[k]); // local -> global
+    if (const Vec3* N = b.joint_normal(k)) // a smooth joint (smooth_joint.h): its own matrix
+    {
+      const Vec3 local_normal = R.transpose() * *N;
+      Kl = smooth_joint_matrix(b.stiffness(k), key[5], local_normal);
+      last_key[5] = -1;
+    }
+    else if (key != last_key)
     {
       Kl = unified_bond_matrix(b.stiffness(k), key[5]);
       last_key = key;
     }
-    const Eigen::Matrix3d R = bond_frame(b.rest_axis[k]); // local -> global
     Matrix12 Kg;
     for (int I = 0; I < 4; ++I) // 3x3 blocks: R K_IJ R^T (cheaper than the 12x12 product)
       for (int J = 0; J <= I; ++J)

@@ -1,6 +1,7 @@
 #include "dem/solvers/time_step.h"
 #include "dem/bonds/bond_matrix.h"
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -23,7 +24,7 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
     const int a = bonds.a[k], b = bonds.b[k];
     eq48 = std::min(eq48, 0.22 * std::sqrt(std::min(p.mass[a], p.mass[b]) / bonds.kn[k]));
     const double ca = std::max(1, p.coordination[a]), cb = std::max(1, p.coordination[b]);
-    const std::array<double, 12> key = {bonds.kn[k],
+    std::array<double, 12> key = {bonds.kn[k],
                                         bonds.ks[k],
                                         bonds.ktor[k],
                                         bonds.kben[k],
@@ -35,6 +36,13 @@ TimeStepEstimate estimate_critical_time_step(const ParticleStore& p, const BondS
                                         p.inertia[b] / cb,
                                         bonds.damping_force[k],
                                         bonds.damping_moment[k]};
+    if (bonds.is_smooth_joint(k))
+    {
+      // a smooth joint's D = k_n n n^T + k_s (I - n n^T) on the contact point's displacement
+      // (bond_matrix.h) is at most max(k_n, k_s) I, with no rotational stiffness: that bound
+      key[0] = key[1] = std::max(key[0], key[1]);
+      key[2] = key[3] = 0;
+    }
     auto it = cache.find(key);
     double dt_k;
     if (it != cache.end())

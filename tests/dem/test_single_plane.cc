@@ -1,0 +1,249 @@
+// Jaeger's single plane of weakness (Jaeger 1960; Jaeger, Cook & Zimmerman, Fundamentals of
+// Rock Mechanics, 4th ed., section 10.2): a specimen with one plane of cohesion c_w and friction
+// coefficient mu_w = tan phi_w whose normal makes the angle beta with sigma_1 slips on it when
+//   sigma_1 - sigma_3 = 2 (c_w + mu_w sigma_3) / ((1 - mu_w cot beta) sin 2 beta)           (1)
+// is below the intact strength; the least strength is at beta = 45 + phi_w / 2 degrees, and the
+// plane cannot slip for beta <= phi_w (the denominator's sign).
+// On a random packing (r = 1.5 mm) whose weak-plane bonds are smooth joints
+// (bonds/smooth_joint.h) an eighth as strong as the rest (Mohr-Coulomb, 30 degrees):
+//  - c_w and mu_w from two direct shears of a one-plane specimen in a shear box (the half below
+//    the plane held, the half above slid as a whole, free to dilate, under sigma_n);
+//  - the plane's normal at beta from the load, unconfined and under sigma_3 = 1 MPa on both
+//    side faces, the ends on rollers.
+// The plane's failure is read, in both tests, as the stress at which half of its bonds have
+// broken: a broken joint becomes an ordinary frictional contact between spheres, whose
+// interlocking carries the load on towards the intact strength, so the specimen's peak is not
+// the plane's (a frictional smooth joint after failure, as PFC's, is not modelled).
+#include "dem/model/model.h"
+#include "dem/solvers/explicit_solver.h"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <numbers>
+#include <vector>
+
+using namespace dembridge::dem;
+
+namespace
+{
+constexpr double deg = std::numbers::pi / 180;
+constexpr double radius = 1.5e-3; // m
+
+GroupConfig face_group(const std::string& name, int axis, bool upper, std::uint8_t fixed)
+{
+  GroupConfig g{name, {}, fixed, 0, Vec3::Zero()};
+  g.selection.kind = GroupSelection::Kind::face;
+  g.selection.face_axis = axis;
+  g.selection.face_upper = upper;
+  return g;
+}
+
+/// A random packing of @p box with strong bonds, brittle, Mohr-Coulomb, and one weak plane of
+/// normal @p normal through the box's centre (none for a zero normal), its bonds smooth joints
+/// a tenth as strong; linear frictional contacts once bonds break.
+CaseConfig specimen(const Vec3& box, const Vec3& normal)
+{
+  CaseConfig c;
+  c.particles.kind = ParticleSource::Kind::random;
+  c.particles.radius = radius;
+  c.particles.box_size = box;
+  c.particles.seed = 3;
+  c.particles.density = 2500;
+  c.bonds.material.model = BondModel::parallel_bond;
+  c.bonds.material.youngs_modulus = 4e9;
+  c.bonds.material.poisson_ratio = 0.3;
+  c.bonds.material.stiffness_ratio = 2.5;
+  c.bonds.contact_radius_multiplier = 1.04;
+  c.damage.law.mode = FailureMode::brittle;
+  c.damage.law.shear = ShearCriterion::mohr_coulomb;
+  c.damage.friction_angle = 30;
+  c.damage.law.tan_friction = std::tan(30 * deg);
+  c.damage.tensile_strength = 8e6;
+  c.damage.cohesion = 8e6;
+  if (normal.squaredNorm() > 0)
+  {
+    WeakPlaneSet plane;
+    plane.normal = normal.normalized();
+    plane.offsets = {plane.normal.dot(0.5 * box) + 0.31 * radius};
+    c.microstructure.weak_planes = plane;
+    BondClassConfig weak = BondClassConfig::of_specimen(c.bonds.material, c.damage);
+    weak.tensile_strength = 1e6;
+    weak.cohesion = 1e6;
+    c.microstructure.weak_plane = weak;
+    c.microstructure.smooth_joint = true;
+  }
+  c.contacts.model = ContactModel::linear;
+  c.contacts.normal_stiffness = 2e7;
+  c.contacts.restitution = 0.3;
+  c.contacts.friction = 0.5;
+  return c;
+}
+
+LoadConfig load(const std::string& group, const std::string& name, LoadKind kind, Vec3 value,
+                double area)
+{
+  LoadConfig l;
+  l.group = group;
+  l.load.name = name;
+  l.load.kind = kind;
+  l.load.value = value;
+  l.load.area = area;
+  return l;
+}
+
+/// What a run gave: the largest reference stress of load 0, and that stress when half the
+/// plane's bonds had broken (the plane's failure; 0 without a plane or before it).
+struct Strength
+{
+  double peak = 0, plane = 0;
+};
+
+/// Runs @p c for @p duration, stopping once the stress has fallen to half its peak, or with
+/// @p to_plane once the plane has failed.
+Strength run(const CaseConfig& c, double duration, bool to_plane)
+{
+  Model m = build_model(c);
+  ExplicitSolver s(m.particles, m.bonds, m.groups, m.constraints, m.loads,
+                   {m.time_step, 0.7, 1, 0.0});
+  for (auto& contribution : m.contributions)
+    s.add_contribution(contribution.get());
+  const double plane_bonds =
+      double(m.microstructure.bonds_per_class[std::size_t(BondClass::weak_plane)]);
+  Strength out;
+  std::size_t seen = 0;
+  long plane_broken = 0;
+  while (s.time() < duration)
+  {
+    s.step();
+    const double sigma = s.reference_stress(0);
+    for (; plane_bonds > 0 && seen < s.cracks().size(); ++seen)
+      plane_broken += s.bonds().bond_class[s.cracks()[seen].bond] == BondClass::weak_plane;
+    if (out.plane == 0 && plane_bonds > 0 && double(plane_broken) >= 0.5 * plane_bonds)
+    {
+      out.plane = sigma;
+      if (to_plane)
+        break;
+    }
+    out.peak = std::max(out.peak, sigma);
+    if (sigma < 0.5 * out.peak && s.time() > 0.1 * duration) // failed: the peak is behind
+      break;
+  }
+  return out;
+}
+
+/// Direct shear of a one-plane specimen (plane x = const), as in a shear box: the half below
+/// the plane held, the half above slid along y as a whole (free along x), the x+ face under the
+/// normal stress @p sigma_n. The shear stress on the plane when half its bonds have broken.
+double direct_shear(double sigma_n)
+{
+  const Vec3 box(0.024, 0.036, 0.012);
+  CaseConfig c = specimen(box, Vec3::UnitX());
+  const double cut = 0.5 * box.x() + 0.31 * radius; // the plane
+  GroupConfig lower{"lower", {}, dof_ux | dof_uy | dof_uz, 0, Vec3::Zero()};
+  lower.selection.kind = GroupSelection::Kind::box;
+  lower.selection.box_min = Vec3(-1, -1, -1);
+  lower.selection.box_max = Vec3(cut, 1, 1);
+  GroupConfig upper{"upper", {}, dof_uz, 0, Vec3::Zero()};
+  upper.selection.kind = GroupSelection::Kind::box;
+  upper.selection.box_min = Vec3(cut, -1, -1);
+  upper.selection.box_max = Vec3(1, 1, 1);
+  c.groups = {lower, upper, face_group("x+", 0, true, 0)};
+  const double area = box.y() * box.z(), duration = 3e-3;
+  LoadConfig shear = load("upper", "shear", LoadKind::displacement, Vec3(0, 1e-4, 0), area);
+  shear.load.components = 2;
+  shear.load.ramp_time = duration;
+  shear.load.profile = RampProfile::smooth;
+  LoadConfig normal = load("x+", "normal", LoadKind::pressure, Vec3(-1, 0, 0), area);
+  normal.load.pressure = sigma_n;
+  normal.load.ramp_time = 0.2e-3;
+  c.loads = {shear, normal};
+  return run(c, duration, true).plane;
+}
+
+/// Compression along x of the box with the plane's normal at @p beta degrees from x in the
+/// x-y plane (no plane: beta < 0), under the lateral stress @p sigma_3 on both y faces; with
+/// @p to_plane up to the plane's failure only.
+Strength compression(double beta, double sigma_3, bool to_plane)
+{
+  const Vec3 box(0.072, 0.024, 0.012);
+  CaseConfig c =
+      specimen(box, beta < 0 ? Vec3::Zero() : Vec3(std::cos(beta * deg), std::sin(beta * deg), 0));
+  GroupConfig corner{"corner", {}, dof_uy | dof_uz, 0, Vec3::Zero()};
+  corner.selection.kind = GroupSelection::Kind::nearest;
+  corner.selection.point = Vec3::Zero();
+  c.groups = {face_group("x-", 0, false, dof_ux), face_group("x+", 0, true, 0),
+              face_group("y-", 1, false, 0), face_group("y+", 1, true, 0), corner};
+  const double duration = 8e-3;
+  LoadConfig drive =
+      load("x+", "drive", LoadKind::displacement, Vec3(-6e-4, 0, 0), box.y() * box.z());
+  drive.load.components = 1;
+  drive.load.ramp_time = duration;
+  drive.load.profile = RampProfile::smooth;
+  c.loads = {drive};
+  if (sigma_3 > 0)
+    for (int side : {-1, 1})
+    {
+      LoadConfig confine = load(side < 0 ? "y-" : "y+", side < 0 ? "confine-" : "confine+",
+                                LoadKind::pressure, Vec3(0, -side, 0), box.x() * box.z());
+      confine.load.pressure = sigma_3;
+      confine.load.ramp_time = 0.2e-3;
+      c.loads.push_back(confine);
+    }
+  return run(c, duration, to_plane);
+}
+} // namespace
+
+TEST(SinglePlane, JaegerStrengthAgainstTheAngle)
+{
+  // the plane's c_w and mu_w from two direct shears
+  const double s1 = 0.5e6, s2 = 2e6;
+  const double t1 = direct_shear(s1), t2 = direct_shear(s2);
+  const double mu_w = (t2 - t1) / (s2 - s1), c_w = t1 - mu_w * s1;
+  const double phi_w = std::atan(mu_w) / deg;
+  std::printf("direct shear: tau %.3f MPa at sigma_n %.2f MPa, %.3f MPa at %.2f MPa: c_w %.3f "
+              "MPa, phi_w %.1f degrees\n",
+              t1 / 1e6, s1 / 1e6, t2 / 1e6, s2 / 1e6, c_w / 1e6, phi_w);
+  const Strength intact = compression(-1, 0, false);
+  std::printf("intact: peak %.3f MPa\n", intact.peak / 1e6);
+  auto jaeger = [&](double beta, double sigma_3) // eq. (1)
+  {
+    const double b = beta * deg;
+    return sigma_3 + 2 * (c_w + mu_w * sigma_3) / ((1 - mu_w / std::tan(b)) * std::sin(2 * b));
+  };
+  // outside the window (beta <= phi_w: the plane cannot slip) the intact strength
+  const Strength steep = compression(20, 0, false);
+  std::printf("beta 20: peak %.3f MPa (intact %.3f)\n", steep.peak / 1e6, intact.peak / 1e6);
+  EXPECT_LT(20, phi_w);
+  EXPECT_NEAR(steep.peak / intact.peak, 1.0, 0.1);
+  // inside it the plane's failure, eq. (1), unconfined and under sigma_3 = 1 MPa
+  const std::vector<double> betas = {45, 55, 60, 65, 75};
+  std::vector<double> unconfined;
+  for (double sigma_3 : {0.0, 1e6})
+    for (double beta : betas)
+    {
+      if (sigma_3 > 0 && beta != 45 && beta != 60)
+        continue;
+      const double plane = compression(beta, sigma_3, true).plane;
+      if (sigma_3 == 0)
+        unconfined.push_back(plane);
+      const double expected = jaeger(beta, sigma_3);
+      std::printf("sigma_3 %.1f MPa, beta %.0f: the plane fails at sigma_1 %.3f MPa (eq. 1: %.3f, "
+                  "ratio %.3f)\n",
+                  sigma_3 / 1e6, beta, plane / 1e6, expected / 1e6, plane / expected);
+      EXPECT_NEAR(plane / expected, 1.0, 0.3);
+      EXPECT_LT(plane, intact.peak); // the plane governs
+    }
+  // the least strength at beta = 45 + phi_w / 2: the vertex of the parabola through the lowest
+  // point and its neighbours
+  const std::size_t low = std::size_t(
+      std::min_element(unconfined.begin() + 1, unconfined.end() - 1) - unconfined.begin());
+  const double x0 = betas[low - 1], x1 = betas[low], x2 = betas[low + 1];
+  const double y0 = unconfined[low - 1], y1 = unconfined[low], y2 = unconfined[low + 1];
+  const double d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
+  const double curvature = (d12 - d01) / (x2 - x0);
+  const double vertex = 0.5 * (x0 + x1) - d01 / (2 * curvature);
+  std::printf("least strength at beta %.1f degrees (45 + phi_w / 2 = %.1f)\n", vertex,
+              45 + phi_w / 2);
+  EXPECT_NEAR(vertex / (45 + phi_w / 2), 1.0, 0.1);
+}
