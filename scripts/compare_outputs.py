@@ -150,7 +150,7 @@ def main():
             else:
                 if open(a, "rb").read() != open(b, "rb").read():
                     found.append(f"{rel}: bytes differ")
-        except (ValueError, OSError) as e:
+        except (ValueError, OSError, RuntimeError) as e:
             found.append(f"{rel}: cannot compare ({e})")
         compared += 1
         differences += found

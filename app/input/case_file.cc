@@ -3,6 +3,7 @@
 #include "app/input/case_scan.h"
 #include "app/input/contact_parameters.h"
 #include "app/input/dem_parameters.h"
+#include "app/input/group_load_parameters.h"
 #include "app/input/verification_parameters.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "fem/fem_case.h"

@@ -1,11 +1,11 @@
 #include "app/input/dem_parameters.h"
 #include "app/input/contact_parameters.h"
 #include "app/input/damage_parameters.h"
+#include "app/input/group_load_parameters.h"
 #include "app/input/microstructure_parameters.h"
 #include "app/input/parameter_values.h"
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <sstream>
 
 namespace dembridge::app
@@ -28,7 +28,11 @@ std::vector<std::string> split_names(const std::string& text)
   return out;
 }
 
-void declare_dem_parameters(ParameterHandler& prm)
+namespace
+{
+/// Particles: where the spheres come from (a row, a file, a lattice, a random packing), their
+/// sizes, density and the notch removed before bonding.
+void declare_particles_section(ParameterHandler& prm)
 {
   prm.enter_subsection("Particles");
   prm.declare_entry("source", "row", Selection("row|file|cubic|hcp|fcc|random"),
@@ -72,7 +76,11 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "max] (m) are removed before bonding; both 0: none.");
   prm.declare_entry("remove box max", "0, 0, 0", vector3, "Upper corner of the remove box (m).");
   prm.leave_subsection();
+}
 
+/// Bonds: the bond model, its elastic constants and which particles are bonded.
+void declare_bonds_section(ParameterHandler& prm)
+{
   prm.enter_subsection("Bonds");
   prm.declare_entry("model", "timoshenko", Selection(dem::bond_model_selection()),
                     "Bond model (Chen et al. 2022): parallel_bond (PBM), euler_bernoulli (EBBM), "
@@ -90,7 +98,11 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("pairs", "", Anything(),
                     "Explicit bonds 'i-j, k-l' (particle indices); empty: bond by contact radius.");
   prm.leave_subsection();
+}
 
+/// Damping: bond dashpots, local and mass-proportional damping.
+void declare_damping_section(ParameterHandler& prm)
+{
   prm.enter_subsection("Damping");
   prm.declare_entry(
       "bond damping ratio", "0", Double(0),
@@ -102,7 +114,11 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "translation, as Coupling/mass damping applies in a coupled run (damping "
                     "ratio c / (2 omega) for a mode of angular frequency omega).");
   prm.leave_subsection();
+}
 
+/// Simulation: the solver, the time step, when the run stops, threads and load steps.
+void declare_simulation_section(ParameterHandler& prm)
+{
   prm.enter_subsection("Simulation");
   prm.declare_entry("solver", "explicit", Selection("explicit|static"),
                     "explicit: Verlet dynamics with damping; static: the equilibrium of the "
@@ -135,7 +151,11 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "Static solver: equilibria at t_k = k end time / N, k = 1..N, one history.csv "
                     "row each (the last is the final state).");
   prm.leave_subsection();
+}
 
+/// Groups/names and Loads/names: the lists whose members get their own sections.
+void declare_group_and_load_names(ParameterHandler& prm)
+{
   prm.enter_subsection("Groups");
   prm.declare_entry("names", "", Anything(),
                     "Comma-separated group names; each needs a 'subsection Group NAME'.");
@@ -144,7 +164,11 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("names", "", Anything(),
                     "Comma-separated load names; each needs a 'subsection Load NAME'.");
   prm.leave_subsection();
+}
 
+/// Measurements: the figures of summary.json and the groups they are measured on.
+void declare_measurements_section(ParameterHandler& prm)
+{
   prm.enter_subsection("Measurements");
   prm.declare_entry("deflection group", "", Anything(),
                     "Group whose mean displacement is the deflection.");
@@ -177,9 +201,11 @@ void declare_dem_parameters(ParameterHandler& prm)
   prm.declare_entry("stress histogram bins", "20", Integer(1),
                     "Bins of the particle stress histogram (thesis Fig. 36) in summary.json.");
   prm.leave_subsection();
+}
 
-  declare_contact_parameters(prm);
-
+/// Output: history and ParaView intervals, and checkpoints.
+void declare_output_section(ParameterHandler& prm)
+{
   prm.enter_subsection("Output");
   prm.declare_entry("history interval", "100", Integer(1), "Steps between history.csv rows.");
   prm.declare_entry("snapshot interval", "0", Integer(0),
@@ -193,76 +219,28 @@ void declare_dem_parameters(ParameterHandler& prm)
                     "Wall-clock time between checkpoints (s), beside or instead of 'checkpoint "
                     "interval'; 0: none.");
   prm.leave_subsection();
+}
+} // namespace
 
+void declare_dem_parameters(ParameterHandler& prm)
+{
+  declare_particles_section(prm);
+  declare_bonds_section(prm);
+  declare_damping_section(prm);
+  declare_simulation_section(prm);
+  declare_group_and_load_names(prm);
+  declare_measurements_section(prm);
+  declare_contact_parameters(prm);
+  declare_output_section(prm);
   declare_damage_parameters(prm);
   declare_microstructure_parameters(prm);
 }
 
-void declare_group_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
+namespace
 {
-  for (const auto& name : names)
-  {
-    prm.enter_subsection("Group " + name);
-    prm.declare_entry("select", "index", Selection("all|index|box|face|nearest"),
-                      "How the group is selected.");
-    prm.declare_entry("point", "0, 0, 0", vector3,
-                      "select = nearest: the one particle whose centre is nearest this point (m).");
-    prm.declare_entry("indices", "", List(Integer(), 0),
-                      "Particle indices (select = index); negative counts from the end.");
-    prm.declare_entry("box min", "0, 0, 0", vector3, "Lower corner (m), select = box.");
-    prm.declare_entry("box max", "0, 0, 0", vector3, "Upper corner (m), select = box.");
-    prm.declare_entry("face", "x-", Selection("x-|x+|y-|y+|z-|z+"),
-                      "Specimen face, select = face.");
-    prm.declare_entry("face thickness", "1.5", Double(0),
-                      "Centres within thickness x radius of the face (thesis: 1.5).");
-    prm.declare_entry("fixed", "", Anything(), "Held DOFs: any of ux, uy, uz, rx, ry, rz, or all.");
-    prm.declare_entry("mass", "0", Double(0), "Mass of each particle (kg); 0: density x volume.");
-    prm.declare_entry("initial velocity", "0, 0, 0", vector3, "Initial velocity (m/s).");
-    prm.leave_subsection();
-  }
-}
-
-void declare_load_parameters(ParameterHandler& prm, const std::vector<std::string>& names)
+/// Particles: the source of the spheres; a file source must name a file that exists.
+void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
 {
-  for (const auto& name : names)
-  {
-    prm.enter_subsection("Load " + name);
-    prm.declare_entry("group", "", Anything(), "Group the load acts on.");
-    prm.declare_entry("type", "force",
-                      Selection("force|moment|velocity|angular velocity|displacement|pressure"),
-                      "force/moment: group total (N, N·m) shared equally; velocity/angular "
-                      "velocity: prescribed per particle (m/s, rad/s), explicit solver only; "
-                      "displacement: prescribed per particle (m), reached at the end of the ramp "
-                      "and held, read the same by the static and explicit solvers; pressure: a "
-                      "normal stress on a face group, (pressure x ramp + ratio x the stress of "
-                      "the ratio load) x area along value (the direction it pushes), shared "
-                      "equally: a confining stress, held or in proportion to the axial one.");
-    prm.declare_entry("ramp profile", "linear", Selection("linear|smooth"),
-                      "Displacement loads: linear (constant velocity over the ramp) or smooth "
-                      "(3 s^2 - 2 s^3: zero velocity at both ends).");
-    prm.declare_entry("value", "0, 0, 0", vector3, "Full value, reached at the end of the ramp.");
-    prm.declare_entry("components", "x, y, z", List(Selection("x|y|z"), 1, 3),
-                      "Prescribed components (velocity and displacement types).");
-    prm.declare_entry("ramp time", "0", Double(0), "Linear ramp from 0 over this time (s).");
-    prm.declare_entry("pressure", "0", Double(),
-                      "Pressure loads: the confining stress p_0 (Pa), ramped as a force.");
-    prm.declare_entry("ratio", "0", Double(),
-                      "Pressure loads: R, the share of the ratio load's stress added to p_0 "
-                      "(sigma_2 = p_0 + R sigma_1), followed step by step.");
-    prm.declare_entry("ratio load", "", Anything(),
-                      "Pressure loads with a ratio: the displacement or velocity load whose "
-                      "support reaction along its value, over its area, is sigma_1.");
-    prm.declare_entry("area", "0", Double(0),
-                      "Face area (m^2): a pressure's, or that of a load a pressure follows.");
-    prm.declare_entry("end time", "inf", Anything(),
-                      "Time (s) at which the load is removed / the DOFs released; 'inf': never.");
-    prm.leave_subsection();
-  }
-}
-
-dem::CaseConfig parse_dem_case(ParameterHandler& prm)
-{
-  dem::CaseConfig c;
   using K = dem::ParticleSource::Kind;
   prm.enter_subsection("Particles");
   {
@@ -306,7 +284,11 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     }
   }
   prm.leave_subsection();
+}
 
+/// Bonds: the bond material and the explicit pairs 'i-j', if any.
+void parse_bonds_section(ParameterHandler& prm, dem::CaseConfig& c)
+{
   prm.enter_subsection("Bonds");
   {
     auto& m = c.bonds.material;
@@ -334,13 +316,21 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     }
   }
   prm.leave_subsection();
+}
 
+/// Damping.
+void parse_damping_section(ParameterHandler& prm, dem::CaseConfig& c)
+{
   prm.enter_subsection("Damping");
   c.run.bond_damping_ratio = prm.get_double("bond damping ratio");
   c.run.particle_damping = prm.get_double("particle damping");
   c.run.mass_damping = prm.get_double("mass damping");
   prm.leave_subsection();
+}
 
+/// Simulation: the time step ('auto' or a positive number) and when the run stops.
+void parse_simulation_section(ParameterHandler& prm, dem::CaseConfig& c)
+{
   prm.enter_subsection("Simulation");
   {
     const std::string dt = prm.get("time step");
@@ -371,90 +361,11 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
     c.run.threads = prm.get_integer("threads");
   }
   prm.leave_subsection();
+}
 
-  prm.enter_subsection("Groups");
-  const auto group_names = split_names(prm.get("names"));
-  prm.leave_subsection();
-  for (const auto& name : group_names)
-  {
-    dem::GroupConfig g;
-    g.name = name;
-    const std::string where = "Group " + name;
-    prm.enter_subsection(where);
-    using GK = dem::GroupSelection::Kind;
-    const std::string sel = prm.get("select");
-    g.selection.kind = sel == "all"     ? GK::all
-                       : sel == "index" ? GK::index
-                       : sel == "box"   ? GK::box
-                       : sel == "face"  ? GK::face
-                                        : GK::nearest;
-    for (const auto& s : dealii::Utilities::split_string_list(prm.get("indices"), ','))
-      g.selection.indices.push_back(std::stol(s));
-    if (g.selection.kind == GK::index && g.selection.indices.empty())
-      throw dem::InputError(where + "/indices: select = index needs at least one index");
-    g.selection.box_min = get_vec3(prm, "box min");
-    g.selection.box_max = get_vec3(prm, "box max");
-    std::tie(g.selection.face_axis, g.selection.face_upper) =
-        dem::parse_face(prm.get("face"), where + "/face");
-    g.selection.face_thickness = prm.get_double("face thickness");
-    g.selection.point = get_vec3(prm, "point");
-    g.fixed = dem::parse_dof_mask(prm.get("fixed"), where + "/fixed");
-    g.mass = prm.get_double("mass");
-    g.initial_velocity = get_vec3(prm, "initial velocity");
-    prm.leave_subsection();
-    c.groups.push_back(g);
-  }
-
-  prm.enter_subsection("Loads");
-  const auto load_names = split_names(prm.get("names"));
-  prm.leave_subsection();
-  for (const auto& name : load_names)
-  {
-    dem::LoadConfig lc;
-    const std::string where = "Load " + name;
-    prm.enter_subsection(where);
-    lc.load.name = name;
-    lc.group = prm.get("group");
-    if (lc.group.empty())
-      throw dem::InputError(where + "/group: a load needs a group");
-    const std::string type = prm.get("type");
-    lc.load.kind = type == "force"          ? dem::LoadKind::force
-                   : type == "moment"       ? dem::LoadKind::moment
-                   : type == "velocity"     ? dem::LoadKind::velocity
-                   : type == "displacement" ? dem::LoadKind::displacement
-                   : type == "pressure"     ? dem::LoadKind::pressure
-                                            : dem::LoadKind::angular_velocity;
-    lc.load.pressure = prm.get_double("pressure");
-    lc.load.ratio = prm.get_double("ratio");
-    lc.load.area = prm.get_double("area");
-    lc.ratio_load = prm.get("ratio load");
-    lc.load.profile =
-        prm.get("ramp profile") == "smooth" ? dem::RampProfile::smooth : dem::RampProfile::linear;
-    lc.load.value = get_vec3(prm, "value");
-    lc.load.components = 0;
-    for (const auto& comp : dealii::Utilities::split_string_list(prm.get("components"), ','))
-      lc.load.components |= std::uint8_t(1u << (comp[0] - 'x'));
-    lc.load.ramp_time = prm.get_double("ramp time");
-    const std::string end = prm.get("end time");
-    if (end == "inf" || end == "never")
-      lc.load.end_time = std::numeric_limits<double>::infinity();
-    else
-    {
-      try
-      {
-        lc.load.end_time = std::stod(end);
-      }
-      catch (const std::exception&)
-      {
-        throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
-      }
-    }
-    prm.leave_subsection();
-    c.loads.push_back(lc);
-  }
-
-  parse_contact_parameters(prm, c);
-
+/// Measurements: the groups measured on must come in the counts their tests need.
+void parse_measurements_section(ParameterHandler& prm, dem::CaseConfig& c)
+{
   prm.enter_subsection("Measurements");
   c.measure.deflection_group = prm.get("deflection group");
   c.measure.deflection_name = prm.get("deflection name");
@@ -481,6 +392,20 @@ dem::CaseConfig parse_dem_case(ParameterHandler& prm)
   if (!(c.measure.deflection_direction.norm() > 0))
     throw dem::InputError("Measurements/deflection direction: must be a non-zero vector");
   prm.leave_subsection();
+}
+} // namespace
+
+dem::CaseConfig parse_dem_case(ParameterHandler& prm)
+{
+  dem::CaseConfig c;
+  parse_particles_section(prm, c);
+  parse_bonds_section(prm, c);
+  parse_damping_section(prm, c);
+  parse_simulation_section(prm, c);
+  c.groups = parse_group_sections(prm);
+  c.loads = parse_load_sections(prm);
+  parse_contact_parameters(prm, c);
+  parse_measurements_section(prm, c);
   c.damage = parse_damage_parameters(prm);
   c.microstructure = parse_microstructure_parameters(prm, c.bonds.material, c.damage);
   return c;

@@ -2,7 +2,7 @@
 // The DEM case file: every subsection a DEM run reads, declared with defaults, bounded patterns
 // and documentation (deal.II ParameterHandler), and its translation into dem::CaseConfig.
 // Groups and loads are named lists: `Groups/names = left, tip` declares the subsections
-// `Group left` and `Group tip`; likewise `Loads/names` and `Load NAME`.
+// `Group left` and `Group tip`; likewise `Loads/names` and `Load NAME` (group_load_parameters.h).
 #include "dem/model/case_config.h"
 #include <deal.II/base/parameter_handler.h>
 #include <string>
@@ -13,10 +13,6 @@ namespace dembridge::app
 /// Declares the fixed DEM subsections (Particles, Bonds, Damping, Simulation, Groups, Loads,
 /// Measurements, Output).
 void declare_dem_parameters(dealii::ParameterHandler& prm);
-
-/// Declares `Group NAME` / `Load NAME` subsections for the given names.
-void declare_group_parameters(dealii::ParameterHandler& prm, const std::vector<std::string>& names);
-void declare_load_parameters(dealii::ParameterHandler& prm, const std::vector<std::string>& names);
 
 /// Reads the parsed file into a CaseConfig; throws dem::InputError (Section/key: reason).
 dem::CaseConfig parse_dem_case(dealii::ParameterHandler& prm);

@@ -119,17 +119,12 @@ void add_static_geometry(nlohmann::json& j, const dem::Model& model)
   }
 }
 
-void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::MeasureConfig& m,
-                       const dem::ParticleStresses& stresses,
-                       const std::pair<dem::Vec3, dem::Vec3>& extent,
-                       const std::optional<dem::StressLayers>& layers, const LoadHistory& history,
-                       bool broke)
+namespace
 {
-  const auto a = dem::axial_response(
-      model.particles,
-      model.groups[model.group_index(m.modulus_fixed_group, "Measurements/modulus groups")],
-      model.groups[model.group_index(m.modulus_loaded_group, "Measurements/modulus groups")],
-      m.modulus_axis);
+/// E (or a broken specimen's final secant modulus), the axial stress, strain and force, the
+/// Poisson's ratios from the end groups' response @p a; null with a warning where undefined.
+void add_axial_response(nlohmann::json& j, const dem::AxialResponse& a, bool broke)
+{
   const std::string axes = "xyz";
   // a specimen that broke: its final state is past the peak (a secant through the damage),
   // so E comes from the elastic part of the curve and the final ratios keep their own names
@@ -158,6 +153,12 @@ void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::Me
   else if (a.force == 0 && !broke)
     add_warning(j, "youngs_modulus: 0: the end groups (Measurements/modulus groups) carry no "
                    "axial load (reaction 0)");
+}
+
+/// E fitted to the load history (of its elastic part when bonds broke), and the peak stress.
+void add_fitted_modulus(nlohmann::json& j, const dem::AxialResponse& a, const LoadHistory& history,
+                        bool broke)
+{
   const auto& du = history.axial_displacement;
   if (du.size() >= 3)
   {
@@ -190,6 +191,15 @@ void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::Me
                        std::to_string(du.size()) +
                        " records, too few to fit the elastic part (Output/history interval)");
   }
+}
+
+/// The RVE average stress of the specimen between the loaded planes against the boundary
+/// stress, and the slab averages of the stress layers.
+void add_rve_figures(nlohmann::json& j, const dem::Model& model, const dem::AxialResponse& a,
+                     const dem::ParticleStresses& stresses,
+                     const std::pair<dem::Vec3, dem::Vec3>& extent,
+                     const std::optional<dem::StressLayers>& layers)
+{
   // RVE = the specimen between the planes where the end loads act (gauge length x area).
   j["boundary_stress"] = a.stress;
   const dem::Tensor3 rve = dem::rve_average(model.particles, stresses, extent.first, extent.second,
@@ -207,6 +217,23 @@ void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::Me
       ratio.push_back(t(a.axis, a.axis) / a.stress);
     j["stress_layers"]["normal_stress_ratio"] = ratio;
   }
+}
+} // namespace
+
+void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::MeasureConfig& m,
+                       const dem::ParticleStresses& stresses,
+                       const std::pair<dem::Vec3, dem::Vec3>& extent,
+                       const std::optional<dem::StressLayers>& layers, const LoadHistory& history,
+                       bool broke)
+{
+  const auto a = dem::axial_response(
+      model.particles,
+      model.groups[model.group_index(m.modulus_fixed_group, "Measurements/modulus groups")],
+      model.groups[model.group_index(m.modulus_loaded_group, "Measurements/modulus groups")],
+      m.modulus_axis);
+  add_axial_response(j, a, broke);
+  add_fitted_modulus(j, a, history, broke);
+  add_rve_figures(j, model, a, stresses, extent, layers);
 }
 
 void add_flexural_figures(nlohmann::json& j, const dem::Model& model, const dem::MeasureConfig& m,

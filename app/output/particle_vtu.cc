@@ -10,67 +10,153 @@
 
 namespace dembridge::app
 {
+namespace
+{
+/// Points in the user's numbering (the stores are in spatial order, renumbering.h): point j is
+/// the particle with id j, so the files do not depend on the internal order.
+class UserOrder
+{
+public:
+  explicit UserOrder(const dem::ParticleStore& p) : at_(p.size())
+  {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      at_[std::size_t(p.id[i])] = i;
+  }
+  /// The store index of point j.
+  std::size_t operator[](std::size_t j) const { return at_[j]; }
+  std::size_t size() const { return at_.size(); }
+
+  /// @p field (a function of the store index) at the points, 3 values each.
+  template <class Field> std::vector<double> vectors(Field field) const
+  {
+    std::vector<double> v(3 * size());
+    for (std::size_t j = 0; j < size(); ++j)
+    {
+      const dem::Vec3 x = field(at_[j]);
+      v[3 * j] = x.x(), v[3 * j + 1] = x.y(), v[3 * j + 2] = x.z();
+    }
+    return v;
+  }
+  /// @p field (a per-particle array) at the points.
+  template <class Field> auto scalars(const Field& field) const
+  {
+    std::vector<std::remove_cv_t<std::remove_reference_t<decltype(field[0])>>> v(size());
+    for (std::size_t j = 0; j < size(); ++j)
+      v[j] = field[at_[j]];
+    return v;
+  }
+
+private:
+  std::vector<std::size_t> at_;
+};
+
+/// The particles' point data: radius, motion, forces, groups, coordination, ids, grains and
+/// the particle stress tensors.
+void add_particle_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondStore& b,
+                       const UserOrder& at)
+{
+  const std::size_t n = p.size();
+  file.point_data("radius", at.scalars(p.radius));
+  file.point_data(
+      "displacement",
+      at.vectors([&](std::size_t i) { return p.position[i] - p.reference_position[i]; }), 3);
+  file.point_data("velocity", at.vectors([&](std::size_t i) { return p.velocity[i]; }), 3);
+  file.point_data("angular_velocity",
+                  at.vectors([&](std::size_t i) { return p.angular_velocity[i]; }), 3);
+  file.point_data("force", at.vectors([&](std::size_t i) { return p.force[i]; }), 3);
+  file.point_data("moment", at.vectors([&](std::size_t i) { return p.torque[i]; }), 3);
+  file.point_data("group_mask", at.scalars(p.group_mask));
+  const std::vector<int> coordination = at.scalars(p.coordination);
+  file.point_data("coordination",
+                  std::vector<std::int32_t>(coordination.begin(), coordination.end()));
+  std::vector<std::int64_t> id(n); // the user's numbering: point j is particle j
+  for (std::size_t j = 0; j < n; ++j)
+    id[j] = std::int64_t(j);
+  file.point_data("id", id);
+  if (!p.grain.empty()) // the microstructure's grain of each particle
+    file.point_data("grain_id", at.scalars(p.grain));
+  // Particle stress tensors (thesis eq. 62), Pa, tension positive; row-major 3 x 3.
+  const dem::ParticleStresses stress = dem::particle_stresses(p, b);
+  std::vector<double> sigma(9 * n);
+  for (std::size_t j = 0; j < n; ++j)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        sigma[9 * j + std::size_t(3 * r + c)] = stress.sigma[at[j]](r, c);
+  file.point_data("stress", sigma, 9);
+}
+
+/// The bonds' cell data: the particle pairs, the forces and moments the bonds carry, their
+/// section stresses, states, damage, ids and classes.
+void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondStore& b)
+{
+  const std::size_t nb = b.size();
+  std::vector<std::int64_t> pairs(2 * nb), id(nb);
+  std::vector<double> normal(nb), shear(nb), twist(nb), bending(nb), force(3 * nb);
+  std::vector<double> tensile(nb), shear_stress(nb), damage(nb);
+  std::vector<std::uint8_t> state(nb);
+  for (std::size_t k = 0; k < nb; ++k)
+  {
+    pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
+    const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
+    dem::Vec3 e = (xb - xa).normalized();
+    if (const dem::Vec3* N = b.joint_normal(k)) // a smooth joint's split (smooth_joint.h)
+      e = N->dot(e) < 0 ? dem::Vec3(-*N) : *N;
+    // evaluated here from the written configuration (no per-bond records kept by the run);
+    // a broken bond carries nothing
+    const dem::BondContactForce contact = dem::bond_contact_force(p, b, k);
+    const dem::Vec3& F = contact.force;
+    const dem::Vec3& M = contact.moment;
+    normal[k] = -F.dot(e); // F is the force on b: pulling b back is tension
+    shear[k] = (F - F.dot(e) * e).norm();
+    twist[k] = M.dot(e);
+    bending[k] = (M - twist[k] * e).norm();
+    for (int d = 0; d < 3; ++d)
+      force[3 * k + std::size_t(d)] = F[d];
+    // beam theory on the section (bond_stress.h) from the forces the bond carries
+    const dem::BondStress st =
+        dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], b.failure.moment_factor);
+    state[k] = std::uint8_t(b.state[k]); // 0 intact, 1 softening, 2 broken
+    tensile[k] = st.tensile;
+    shear_stress[k] = st.shear;
+    damage[k] = b.damage.empty() ? 0.0 : b.damage[k];
+  }
+  file.lines(pairs);
+  file.cell_data("normal_force", normal);
+  file.cell_data("shear_force", shear);
+  file.cell_data("twisting_moment", twist);
+  file.cell_data("bending_moment", bending);
+  file.cell_data("force", force, 3);
+  file.cell_data("state", state);
+  file.cell_data("tensile_stress", tensile);
+  file.cell_data("shear_stress", shear_stress);
+  file.cell_data("damage", damage);
+  file.cell_data("id", id);
+  if (!b.bond_class.empty()) // the class that chose each bond's constants (bond_class.h)
+  {
+    std::vector<std::uint8_t> bond_class(nb);
+    for (std::size_t k = 0; k < nb; ++k)
+      bond_class[k] = std::uint8_t(b.bond_class[k]);
+    file.cell_data("class", bond_class);
+    file.field_strings("class_names", std::vector<std::string>(dem::bond_class_names.begin(),
+                                                               dem::bond_class_names.end()));
+  }
+}
+} // namespace
+
 void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time,
                               long step)
 {
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
-  const std::size_t n = p.size(), nb = b.size();
-  // Points in the user's numbering (the stores are in spatial order, renumbering.h): point j is
-  // the particle with id j, so the files do not depend on the internal order.
-  std::vector<std::size_t> at(n);
-  for (std::size_t i = 0; i < n; ++i)
-    at[std::size_t(p.id[i])] = i;
-  auto vectors = [&](auto field)
-  {
-    std::vector<double> v(3 * n);
-    for (std::size_t j = 0; j < n; ++j)
-    {
-      const dem::Vec3 x = field(at[j]);
-      v[3 * j] = x.x(), v[3 * j + 1] = x.y(), v[3 * j + 2] = x.z();
-    }
-    return v;
-  };
-  auto scalars = [&](const auto& field)
-  {
-    std::vector<std::remove_cv_t<std::remove_reference_t<decltype(field[0])>>> v(n);
-    for (std::size_t j = 0; j < n; ++j)
-      v[j] = field[at[j]];
-    return v;
-  };
+  const std::size_t n = p.size();
+  const UserOrder at(p);
   std::vector<dem::Vec3> points(n);
   for (std::size_t j = 0; j < n; ++j)
     points[j] = p.position[at[j]];
   // Particles: vertices with point data
   {
     VtuFile file(points, VtuFile::Cells::vertices);
-    file.point_data("radius", scalars(p.radius));
-    file.point_data("displacement",
-                    vectors([&](std::size_t i) { return p.position[i] - p.reference_position[i]; }),
-                    3);
-    file.point_data("velocity", vectors([&](std::size_t i) { return p.velocity[i]; }), 3);
-    file.point_data("angular_velocity",
-                    vectors([&](std::size_t i) { return p.angular_velocity[i]; }), 3);
-    file.point_data("force", vectors([&](std::size_t i) { return p.force[i]; }), 3);
-    file.point_data("moment", vectors([&](std::size_t i) { return p.torque[i]; }), 3);
-    file.point_data("group_mask", scalars(p.group_mask));
-    const std::vector<int> coordination = scalars(p.coordination);
-    file.point_data("coordination",
-                    std::vector<std::int32_t>(coordination.begin(), coordination.end()));
-    std::vector<std::int64_t> id(n); // the user's numbering: point j is particle j
-    for (std::size_t j = 0; j < n; ++j)
-      id[j] = std::int64_t(j);
-    file.point_data("id", id);
-    if (!p.grain.empty()) // the microstructure's grain of each particle
-      file.point_data("grain_id", scalars(p.grain));
-    // Particle stress tensors (thesis eq. 62), Pa, tension positive; row-major 3 x 3.
-    const dem::ParticleStresses stress = dem::particle_stresses(p, b);
-    std::vector<double> sigma(9 * n);
-    for (std::size_t j = 0; j < n; ++j)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          sigma[9 * j + std::size_t(3 * r + c)] = stress.sigma[at[j]](r, c);
-    file.point_data("stress", sigma, 9);
+    add_particle_data(file, p, b, at);
     file.field_strings("group_names", group_names_);
     const std::string name = std::string("particles_") + tag + ".vtu";
     file.write(dir_ / name, time, step);
@@ -79,56 +165,7 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   // Bonds: line cells between the particle centres, the bond's quantities as cell data
   {
     VtuFile file(points, VtuFile::Cells::lines);
-    std::vector<std::int64_t> pairs(2 * nb), id(nb);
-    std::vector<double> normal(nb), shear(nb), twist(nb), bending(nb), force(3 * nb);
-    std::vector<double> tensile(nb), shear_stress(nb), damage(nb);
-    std::vector<std::uint8_t> state(nb);
-    for (std::size_t k = 0; k < nb; ++k)
-    {
-      pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
-      const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
-      dem::Vec3 e = (xb - xa).normalized();
-      if (const dem::Vec3* N = b.joint_normal(k)) // a smooth joint's split (smooth_joint.h)
-        e = N->dot(e) < 0 ? dem::Vec3(-*N) : *N;
-      // evaluated here from the written configuration (no per-bond records kept by the run);
-      // a broken bond carries nothing
-      const dem::BondContactForce contact = dem::bond_contact_force(p, b, k);
-      const dem::Vec3& F = contact.force;
-      const dem::Vec3& M = contact.moment;
-      normal[k] = -F.dot(e); // F is the force on b: pulling b back is tension
-      shear[k] = (F - F.dot(e) * e).norm();
-      twist[k] = M.dot(e);
-      bending[k] = (M - twist[k] * e).norm();
-      for (int d = 0; d < 3; ++d)
-        force[3 * k + std::size_t(d)] = F[d];
-      // beam theory on the section (bond_stress.h) from the forces the bond carries
-      const dem::BondStress st =
-          dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], b.failure.moment_factor);
-      state[k] = std::uint8_t(b.state[k]); // 0 intact, 1 softening, 2 broken
-      tensile[k] = st.tensile;
-      shear_stress[k] = st.shear;
-      damage[k] = b.damage.empty() ? 0.0 : b.damage[k];
-    }
-    file.lines(pairs);
-    file.cell_data("normal_force", normal);
-    file.cell_data("shear_force", shear);
-    file.cell_data("twisting_moment", twist);
-    file.cell_data("bending_moment", bending);
-    file.cell_data("force", force, 3);
-    file.cell_data("state", state);
-    file.cell_data("tensile_stress", tensile);
-    file.cell_data("shear_stress", shear_stress);
-    file.cell_data("damage", damage);
-    file.cell_data("id", id);
-    if (!b.bond_class.empty()) // the class that chose each bond's constants (bond_class.h)
-    {
-      std::vector<std::uint8_t> bond_class(nb);
-      for (std::size_t k = 0; k < nb; ++k)
-        bond_class[k] = std::uint8_t(b.bond_class[k]);
-      file.cell_data("class", bond_class);
-      file.field_strings("class_names", std::vector<std::string>(dem::bond_class_names.begin(),
-                                                                 dem::bond_class_names.end()));
-    }
+    add_bond_data(file, p, b);
     std::vector<std::int64_t> particle_id(n);
     for (std::size_t j = 0; j < n; ++j)
       particle_id[j] = std::int64_t(j);

@@ -144,6 +144,40 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   ContactOutput(model).summary(j, r.time);
   return run;
 }
+/// A static run has no time steps: checkpoints and --resume are refused.
+void refuse_static_checkpoints(const dem::CaseConfig& config, const CheckpointSettings& checkpoint)
+{
+  if (config.run.static_solver && (checkpoint.enabled() || checkpoint.resume))
+    throw dem::InputError(
+        std::string(checkpoint.resume ? "--resume" : "Output/checkpoint interval") +
+        ": the static solver has no time steps to checkpoint (explicit runs "
+        "only)");
+}
+
+double mean_coordination(const dem::ParticleStore& p)
+{
+  double mean = 0;
+  for (int c : p.coordination)
+    mean += c;
+  return mean / double(p.size());
+}
+
+/// The natural frequency of Measurements/frequency group; null with a warning when the group did
+/// not swing often enough to measure it.
+void add_natural_frequency(nlohmann::json& j, const dem::RunResult& r,
+                           const dem::MeasureConfig& measure)
+{
+  if (r.natural_frequency)
+    j["natural_frequency"] = *r.natural_frequency;
+  else if (!measure.frequency_group.empty())
+  {
+    j["natural_frequency"] = nullptr;
+    add_warning(j, "natural_frequency: undefined: group '" + measure.frequency_group +
+                       "' (Measurements/frequency group) did not swing through its mean at least "
+                       "three times in the run (a longer Simulation/end time, or less damping); "
+                       "written as null");
+  }
+}
 } // namespace
 
 nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,
@@ -158,11 +192,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   const OutputSettings out = parse_output_settings(prm);
   checkpoint.interval = out.checkpoint_interval;
   checkpoint.wall_interval = out.checkpoint_wall_interval;
-  if (config.run.static_solver && (checkpoint.enabled() || checkpoint.resume))
-    throw dem::InputError(
-        std::string(checkpoint.resume ? "--resume" : "Output/checkpoint interval") +
-        ": the static solver has no time steps to checkpoint (explicit runs "
-        "only)");
+  refuse_static_checkpoints(config, checkpoint);
   dem::Model model = dem::build_model(config);
   if (run_dem_case_on_other_rank(config, model, checkpoint)) // mpirun -np N: rank 0 writes
     return {};
@@ -186,11 +216,6 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     run = run_explicit_case(model, config, out, dir, checkpoint, j);
   const dem::RunResult& r = run.result;
 
-  double mean_coordination = 0;
-  for (int c : model.particles.coordination)
-    mean_coordination += c;
-  mean_coordination /= double(model.particles.size());
-
   // Particle stresses (thesis eq. 62), their histogram (Fig. 36) and slab averages (eq. 54).
   const dem::ParticleStresses stresses = dem::particle_stresses(model.particles, model.bonds);
   const auto extent = dem::reference_extent(model.particles);
@@ -204,7 +229,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   j["bond_model"] = prm.get({"Bonds"}, "model");
   j["n_particles"] = model.particles.size();
   j["n_bonds"] = model.bonds.size();
-  j["mean_coordination"] = mean_coordination;
+  j["mean_coordination"] = mean_coordination(model.particles);
   j["critical_time_step"] = model.critical.critical();
   if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
     j["critical_time_step_eq48"] = model.critical.thesis_eq48;
@@ -220,16 +245,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
     add_axial_figures(j, model, config.measure, stresses, extent, layers, run.history, broke);
   if (!config.measure.flexural_groups.empty())
     add_flexural_figures(j, model, config.measure, run.history, broke);
-  if (r.natural_frequency)
-    j["natural_frequency"] = *r.natural_frequency;
-  else if (!config.measure.frequency_group.empty())
-  {
-    j["natural_frequency"] = nullptr;
-    add_warning(j, "natural_frequency: undefined: group '" + config.measure.frequency_group +
-                       "' (Measurements/frequency group) did not swing through its mean at least "
-                       "three times in the run (a longer Simulation/end time, or less damping); "
-                       "written as null");
-  }
+  add_natural_frequency(j, r, config.measure);
   add_group_figures(j, model);
   return j;
 }

@@ -4,8 +4,10 @@
 #include "app/input/coupled_parameters.h"
 #include "app/input/dem_parameters.h"
 #include "app/job/provenance.h"
+#include "app/output/dem_figures.h"
 #include "app/runs/memory_guard.h"
 #include "app/studies/compare_cases.h"
+#include "app/studies/compare_figures.h"
 #include "app/studies/compare_plot.h"
 #include "app/studies/compare_process.h"
 #include "app/studies/verify.h"
@@ -13,7 +15,6 @@
 #include "coupling/fixed_region.h"
 #include "coupling/full_models.h"
 #include "dem/core/output_file.h"
-#include "dem/measurements/failure_measurements.h"
 #include "fem/fem_case.h"
 #include <chrono>
 #include <cmath>
@@ -21,122 +22,27 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <limits>
-#include <map>
 #include <optional>
-#include <sstream>
 
 namespace dembridge::app
 {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using compare_detail::add_growth_figures;
+using compare_detail::coupled_curve;
+using compare_detail::coupled_model_figures;
+using compare_detail::Curve;
+using compare_detail::dem_curve_of;
+using compare_detail::model_figures;
+using compare_detail::ModelCurves;
+using compare_detail::Notch;
+using compare_detail::read_csv;
+using compare_detail::Table;
+using compare_detail::versus;
 using dem::Vec3;
 using verify_detail::num;
 using verify_detail::python;
 using verify_detail::write_json_atomically;
-
-namespace
-{
-struct Table
-{
-  std::map<std::string, std::size_t> column;
-  std::vector<std::vector<double>> rows;
-  std::vector<double> get(const std::string& name, const std::string& file) const
-  {
-    const auto it = column.find(name);
-    if (it == column.end())
-      throw std::runtime_error("compare: " + file + " has no column '" + name + "'");
-    std::vector<double> v;
-    for (const auto& r : rows)
-      v.push_back(it->second < r.size() ? r[it->second] : std::nan(""));
-    return v;
-  }
-};
-
-Table read_csv(const fs::path& file)
-{
-  std::ifstream in(file);
-  if (!in)
-    throw std::runtime_error("compare: cannot read " + file.string());
-  Table t;
-  std::string line;
-  std::getline(in, line);
-  {
-    std::istringstream h(line);
-    std::string name;
-    for (std::size_t k = 0; std::getline(h, name, ','); ++k)
-      t.column[name] = k;
-  }
-  while (std::getline(in, line))
-  {
-    std::istringstream r(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(r, cell, ','))
-    {
-      char* end = nullptr;
-      const double v = std::strtod(cell.c_str(), &end);
-      row.push_back(end != cell.c_str() ? v : std::nan(""));
-    }
-    t.rows.push_back(row);
-  }
-  return t;
-}
-
-struct Curve
-{
-  std::vector<double> deflection, load;
-};
-
-/// Peak |load| and the limit load (dem/measurements/failure_measurements.h), the deflections
-/// there, and the initial stiffness: least squares through the origin over the records below
-/// half the peak, before the first broken bond.
-json curve_figures(const Curve& c, const std::vector<double>& broken)
-{
-  json j;
-  if (c.load.empty())
-    return j;
-  const dem::PeakLoad peak = dem::peak_of(c.load, c.deflection);
-  const dem::PeakLoad limit = dem::limit_of(c.load, c.deflection);
-  j["peak_load"] = std::abs(peak.load);
-  j["deflection_at_peak"] = std::abs(peak.displacement);
-  j["limit_load"] = std::abs(limit.load);
-  j["deflection_at_limit"] = std::abs(limit.displacement);
-  double sxy = 0, sxx = 0;
-  for (std::size_t k = 0; k < c.load.size(); ++k)
-  {
-    if (std::abs(c.load[k]) > 0.5 * std::abs(peak.load) || (k < broken.size() && broken[k] > 0))
-      break;
-    sxy += c.deflection[k] * c.load[k];
-    sxx += c.deflection[k] * c.deflection[k];
-  }
-  if (sxx > 0)
-    j["initial_stiffness"] = sxy / sxx;
-  return j;
-}
-
-double distance_to_box(const Vec3& x, const Vec3& lo, const Vec3& hi)
-{
-  return (x - x.cwiseMax(lo).cwiseMin(hi)).norm();
-}
-
-std::optional<Vec3> first_crack(const fs::path& cracks)
-{
-  if (!fs::exists(cracks))
-    return std::nullopt;
-  const Table t = read_csv(cracks);
-  if (t.rows.empty())
-    return std::nullopt;
-  const auto& r = t.rows.front();
-  return Vec3(r[t.column.at("x")], r[t.column.at("y")], r[t.column.at("z")]);
-}
-
-json to_json(const Vec3& v)
-{
-  return {v.x(), v.y(), v.z()};
-}
-
-} // namespace
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& o)
 {
@@ -156,77 +62,6 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o)
 
 namespace
 {
-/// The load-deflection curve of a coupled run (its own measure: load_displacement, load).
-Curve coupled_curve(const Table& h, const std::string& file)
-{
-  return {h.get("load_displacement", file), h.get("load", file)};
-}
-
-/// The full-DEM curve: the loaded group's displacement and force along the push.
-Curve dem_curve_of(const Table& h, const std::string& g, const Vec3& direction,
-                   const std::string& file)
-{
-  Curve c;
-  std::vector<double> u[3], F[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    u[d] = h.get(g + "_u" + std::string(1, "xyz"[d]), file);
-    F[d] = h.get(g + "_f" + std::string(1, "xyz"[d]), file);
-  }
-  for (std::size_t k = 0; k < h.rows.size(); ++k)
-  {
-    c.deflection.push_back(u[0][k] * direction.x() + u[1][k] * direction.y() +
-                           u[2][k] * direction.z());
-    c.load.push_back(F[0][k] * direction.x() + F[1][k] * direction.y() + F[2][k] * direction.z());
-  }
-  return c;
-}
-
-/// Model a against model b: the ratios of their figures, the speed-up (b's wall time over a's)
-/// and the distance between their first cracks.
-json versus(const json& a, const json& b)
-{
-  json vs;
-  auto ratio = [&](const char* key) -> json
-  {
-    if (!a.contains(key) || !b.contains(key) || b[key].get<double>() == 0)
-      return nullptr;
-    return a[key].get<double>() / b[key].get<double>();
-  };
-  for (const char* key : {"peak_load", "deflection_at_peak", "limit_load", "deflection_at_limit",
-                          "fracture_energy", "n_broken_bonds", "initial_stiffness"})
-    vs[std::string(key) + "_ratio"] = ratio(key);
-  vs["peak_memory_ratio"] = ratio("peak_memory_bytes");
-  vs["speedup"] = a["wall_seconds"].get<double>() > 0
-                      ? json(b["wall_seconds"].get<double>() / a["wall_seconds"].get<double>())
-                      : json(nullptr);
-  if (a.contains("first_crack") && b.contains("first_crack"))
-  {
-    const Vec3 x(a["first_crack"][0].get<double>(), a["first_crack"][1].get<double>(),
-                 a["first_crack"][2].get<double>());
-    const Vec3 y(b["first_crack"][0].get<double>(), b["first_crack"][1].get<double>(),
-                 b["first_crack"][2].get<double>());
-    vs["first_crack_distance"] = (x - y).norm();
-  }
-  return vs;
-}
-
-/// What an adaptive run's summary says of its region's growth.
-void add_growth_figures(json& model, const json& summary)
-{
-  for (const char* key : {"n_region_growth_events", "n_particles_final", "growth_energy_jump_max",
-                          "particle_region_packing_fraction", "region_cells_final",
-                          "max_utilisation", "region_growth_capped"})
-    if (summary.contains(key))
-      model[key] = summary[key];
-}
-
-struct ModelCurves
-{
-  std::vector<std::pair<std::string, Curve>> curves; ///< coupled, [coupled_fixed,] full_dem
-  double fe_stiffness = 0;
-};
-
 void write_curves(const fs::path& dir, const ModelCurves& m)
 {
   const fs::path part = dir / "comparison.csv.part";
@@ -335,40 +170,53 @@ void print_table(const json& result)
                 cell(result["coupled_fixed_vs_full_dem"], "speedup", 1).c_str());
   }
 }
-} // namespace
-
-int run_compare(const CompareOptions& o)
+/// The coupled case and the two models derived from it (full DEM, full FE), all checked before
+/// anything runs.
+struct CompareCases
 {
-  const std::string case_name = fs::path(o.case_file).filename().string();
-  auto in_case = [&](const std::string& msg) { return case_name + ": " + msg; };
+  std::string name; ///< the case file's name
+  coupling::CoupledCase coupled;
+  coupling::FullDemLayout layout;
+  coupling::FullFeModel fe_model;
+  bool adaptive = false; ///< a fourth model: the adaptive run's final region fixed from the start
+  /// "k of n": the progress of the models' runs.
+  std::string step(int k) const
+  {
+    return std::to_string(k) + " of " + std::to_string(adaptive ? 4 : 3);
+  }
+};
 
-  // ---- 1. Inputs: the case and both derived models, checked before anything runs.
+CompareCases build_cases(const CompareOptions& o)
+{
+  CompareCases c;
+  c.name = fs::path(o.case_file).filename().string();
+  auto in_case = [&](const std::string& msg) { return c.name + ": " + msg; };
   auto prm = read_case(o.case_file, o.overrides);
   if (prm->get("Mode") != "coupled")
     throw std::runtime_error(in_case("Mode: compare needs a coupled case (Mode = coupled)"));
   const fs::path case_dir = fs::absolute(o.case_file).parent_path();
-  coupling::CoupledCase cc;
-  coupling::FullDemLayout layout;
-  coupling::FullFeModel fe_model;
   try
   {
     WorkingDirectory cd(case_dir);
-    cc = parse_coupled_case(*prm);
-    layout = coupling::full_dem_layout(cc);
-    const double cell = o.fe_cell_size > 0 ? o.fe_cell_size : 4 * cc.particles.particles.radius;
-    fe_model = coupling::full_fe_model(cc, cell, o.fe_degree);
+    c.coupled = parse_coupled_case(*prm);
+    c.layout = coupling::full_dem_layout(c.coupled);
+    const double cell =
+        o.fe_cell_size > 0 ? o.fe_cell_size : 4 * c.coupled.particles.particles.radius;
+    c.fe_model = coupling::full_fe_model(c.coupled, cell, o.fe_degree);
   }
   catch (const std::exception& e)
   {
     throw std::runtime_error(in_case(one_line(e.what())));
   }
-  for (const auto& n : layout.notes)
+  for (const auto& n : c.layout.notes)
     std::cerr << "compare: note: " << n << std::endl;
-  const bool adaptive = cc.settings.adaptive.enabled;
-  const int n_models = adaptive ? 4 : 3;
-  auto step = [&](int k) { return std::to_string(k) + " of " + std::to_string(n_models); };
+  c.adaptive = c.coupled.settings.adaptive.enabled;
+  return c;
+}
 
-  // ---- 2. The output folder: the comparison's own files go first.
+/// The output folder (absolute), emptied of the comparison's own files: they go first.
+fs::path prepare_output_folder(const CompareOptions& o)
+{
   const fs::path dir =
       fs::absolute(o.output_dir.empty()
                        ? fs::path("output") / ("compare_" + fs::path(o.case_file).stem().string())
@@ -377,143 +225,160 @@ int run_compare(const CompareOptions& o)
   for (const char* f : {"comparison.json", "comparison.csv", "comparison.png", "full_dem.prm",
                         "coupled_fixed.prm", "coupled_fixed_region.msh"})
     fs::remove(dir / f);
+  return dir;
+}
 
-  // ---- 3. The runs: each of its own process (compare_process.h), the FE reference in this one.
-  run_case_process(step(1) + ", the coupled run of " + case_name, fs::absolute(o.case_file),
-                   o.overrides, dir / "coupled");
-  const json coupled = read_json_file((dir / "coupled" / "summary.json").string(), "compare");
-  int next = 2;
-  json fixed;
-  if (adaptive)
+/// The summaries of the models' runs (coupled_fixed: adaptive cases only, else null).
+struct ModelSummaries
+{
+  json coupled, coupled_fixed, full_dem, full_fem;
+};
+
+/// The same case with the region the adaptive run ended with, placed at the start: its region
+/// mesh, its case file and its run (step @p k); returns its summary.
+json run_coupled_fixed(const CompareOptions& o, const CompareCases& c, const json& coupled,
+                       const fs::path& dir, int k)
+{
+  const auto cells = coupling::RegionCells::from_json(coupled.at("region_final_cells"),
+                                                      "coupled/summary.json: region_final_cells");
+  coupling::write_region_mesh(cells, dir / "coupled_fixed_region.msh");
   {
-    // the same case with the region the adaptive run ended with, placed at the start
-    const auto cells = coupling::RegionCells::from_json(coupled.at("region_final_cells"),
-                                                        "coupled/summary.json: region_final_cells");
-    coupling::write_region_mesh(cells, dir / "coupled_fixed_region.msh");
-    {
-      dem::OutputFile out(dir / "coupled_fixed.prm");
-      out << coupled_fixed_text(o, cells, dir / "coupled_fixed_region.msh");
-      out.close();
-    }
-    run_case_process(step(next++) + ", the coupled run with the final region fixed from the start "
-                                    "(coupled_fixed.prm)",
-                     dir / "coupled_fixed.prm", {}, dir / "coupled_fixed");
-    fixed = read_json_file((dir / "coupled_fixed" / "summary.json").string(), "compare");
-  }
-  const double dt = coupled.at("time_step").get<double>();
-  {
-    dem::OutputFile out(dir / "full_dem.prm"); // failures name the file and the reason
-    out << full_dem_text(o, layout, dt);
+    dem::OutputFile out(dir / "coupled_fixed.prm");
+    out << coupled_fixed_text(o, cells, dir / "coupled_fixed_region.msh");
     out.close();
   }
-  run_case_process(step(next++) + ", the full-DEM run (full_dem.prm)", dir / "full_dem.prm", {},
-                   dir / "full_dem");
-  const json full_dem = read_json_file((dir / "full_dem" / "summary.json").string(), "compare");
-  std::cout << "compare: " << step(next) << ", the elastic FE reference (into "
+  run_case_process(c.step(k) + ", the coupled run with the final region fixed from the start "
+                               "(coupled_fixed.prm)",
+                   dir / "coupled_fixed.prm", {}, dir / "coupled_fixed");
+  return read_json_file((dir / "coupled_fixed" / "summary.json").string(), "compare");
+}
+
+/// The elastic FE reference, in this process (step @p k); returns its summary, with its wall
+/// time and peak memory.
+json run_full_fem(const CompareCases& c, const fs::path& dir, int k)
+{
+  std::cout << "compare: " << c.step(k) << ", the elastic FE reference (into "
             << (dir / "full_fem").string() << ")" << std::endl;
   fs::create_directories(dir / "full_fem");
   const auto fe_start = std::chrono::steady_clock::now();
-  json fe = fem::run_case(fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
+  json fe = fem::run_case(c.fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
   fe["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fe_start).count();
   fe["peak_memory_bytes"] = peak_memory_bytes();
   write_json_atomically(dir / "full_fem", "summary.json", fe);
+  return fe;
+}
 
-  // ---- 4. The figures.
-  const Vec3 direction = fe_model.load.direction;
-  const std::string g = fe_model.load.group;
-  const Table ch = read_csv(dir / "coupled" / "history.csv");
-  const Table dh = read_csv(dir / "full_dem" / "history.csv");
-  ModelCurves curves;
-  curves.curves.emplace_back("coupled", coupled_curve(ch, "coupled/history.csv"));
-  std::optional<Table> fh;
-  if (adaptive)
+/// Runs the models: the particle ones each in a process of its own (compare_process.h), the FE
+/// reference in this one. The full-DEM run takes the coupled run's time step.
+ModelSummaries run_models(const CompareOptions& o, const CompareCases& c, const fs::path& dir)
+{
+  ModelSummaries s;
+  run_case_process(c.step(1) + ", the coupled run of " + c.name, fs::absolute(o.case_file),
+                   o.overrides, dir / "coupled");
+  s.coupled = read_json_file((dir / "coupled" / "summary.json").string(), "compare");
+  int next = 2;
+  if (c.adaptive)
+    s.coupled_fixed = run_coupled_fixed(o, c, s.coupled, dir, next++);
+  const double dt = s.coupled.at("time_step").get<double>();
   {
-    fh = read_csv(dir / "coupled_fixed" / "history.csv");
-    curves.curves.emplace_back("coupled_fixed", coupled_curve(*fh, "coupled_fixed/history.csv"));
+    dem::OutputFile out(dir / "full_dem.prm"); // failures name the file and the reason
+    out << full_dem_text(o, c.layout, dt);
+    out.close();
   }
-  curves.curves.emplace_back("full_dem", dem_curve_of(dh, g, direction, "full_dem/history.csv"));
-  const Curve& cc_curve = curves.curves.front().second;
-  const Curve& dem_curve = curves.curves.back().second;
+  run_case_process(c.step(next++) + ", the full-DEM run (full_dem.prm)", dir / "full_dem.prm", {},
+                   dir / "full_dem");
+  s.full_dem = read_json_file((dir / "full_dem" / "summary.json").string(), "compare");
+  s.full_fem = run_full_fem(c, dir, next);
+  return s;
+}
+
+/// The particle runs' histories and the load-deflection curves read from them.
+struct ModelHistories
+{
+  Table coupled, full_dem;
+  std::optional<Table> coupled_fixed;
+  ModelCurves curves;
+};
+
+ModelHistories read_histories(const CompareCases& c, const fs::path& dir)
+{
+  ModelHistories h;
+  h.coupled = read_csv(dir / "coupled" / "history.csv");
+  h.full_dem = read_csv(dir / "full_dem" / "history.csv");
+  h.curves.curves.emplace_back("coupled", coupled_curve(h.coupled, "coupled/history.csv"));
+  if (c.adaptive)
+  {
+    h.coupled_fixed = read_csv(dir / "coupled_fixed" / "history.csv");
+    h.curves.curves.emplace_back("coupled_fixed",
+                                 coupled_curve(*h.coupled_fixed, "coupled_fixed/history.csv"));
+  }
+  h.curves.curves.emplace_back("full_dem",
+                               dem_curve_of(h.full_dem, c.fe_model.load.group,
+                                            c.fe_model.load.direction, "full_dem/history.csv"));
+  return h;
+}
+
+/// The FE reference's stiffness: its load reaction along the push over the deflection.
+double fe_stiffness_of(const json& fe, const coupling::FullFeModel& m)
+{
   const Vec3 R(fe.at("reactions").at("load")[0].get<double>(),
                fe.at("reactions").at("load")[1].get<double>(),
                fe.at("reactions").at("load")[2].get<double>());
-  const double fe_deflection = fe_model.load.displacement.norm();
+  const double fe_deflection = m.load.displacement.norm();
   // the reaction is the support's force on the body, along the push
-  const double fe_stiffness = R.dot(direction) / fe_deflection;
-  curves.fe_stiffness = fe_stiffness;
+  return R.dot(m.load.direction) / fe_deflection;
+}
 
-  const Vec3 void_lo(fe_model.parameters.remove_lower[0], fe_model.parameters.remove_lower[1],
-                     fe_model.parameters.remove_lower[2]);
-  const Vec3 void_hi(fe_model.parameters.remove_upper[0], fe_model.parameters.remove_upper[1],
-                     fe_model.parameters.remove_upper[2]);
-  const bool notch = (void_hi - void_lo).minCoeff() > 0;
-  auto model_json = [&](const json& summary, const Curve& curve, const std::vector<double>& broken,
-                        double fracture_energy, const fs::path& run_dir)
-  {
-    json j = curve_figures(curve, broken);
-    j["wall_seconds"] = summary.value("wall_seconds", 0.0);
-    j["peak_memory_bytes"] = summary.value("peak_memory_bytes", 0.0);
-    j["n_particles"] = summary.value("n_particles", 0L);
-    j["n_broken_bonds"] = summary.value("n_broken_bonds", 0L);
-    j["broken_bonds_tension"] = summary.value("broken_bonds_tension", 0L);
-    j["broken_bonds_shear"] = summary.value("broken_bonds_shear", 0L);
-    j["fracture_energy"] = fracture_energy;
-    if (summary.contains("energy_balance_error_max"))
-      j["energy_balance_error_max"] = summary["energy_balance_error_max"];
-    if (summary.contains("energy_balance_error"))
-      j["energy_balance_error"] = summary["energy_balance_error"];
-    if (const auto x = first_crack(run_dir / "cracks.csv"))
-    {
-      j["first_crack"] = to_json(*x);
-      if (notch)
-        j["first_crack_distance_to_notch"] = distance_to_box(*x, void_lo, void_hi);
-    }
-    j["output"] = run_dir.string();
-    return j;
-  };
-  // a coupled run: the fracture energy is the particle region's (no other part can break)
-  auto coupled_json =
-      [&](const json& summary, const Table& h, const Curve& curve, const std::string& name)
-  {
-    json m = model_json(summary, curve, h.get("n_broken_bonds", name + "/history.csv"),
-                        summary.value("fracture_energy", 0.0), dir / name);
-    m["n_fe_dofs"] = summary.value("n_fe_dofs", 0L);
-    m["coupling_share"] = summary.value("coupling_share", 0.0);
-    m["damage_reached_band"] = summary.value("damage_reached_band", false);
-    return m;
-  };
-  json result;
-  result["case"] = case_name;
-  result["load_group"] = g;
-  result["load_direction"] = to_json(direction);
-  if (notch)
-    result["notch"] = {{"lower", to_json(void_lo)}, {"upper", to_json(void_hi)}};
-  result["same_packing"] = layout.same_packing;
-  result["notes"] = layout.notes;
-  for (const auto& n : fe_model.notes)
-    result["notes"].push_back(n);
+Notch notch_of(const coupling::FullFeModel& m)
+{
+  Notch n;
+  n.lower = Vec3(m.parameters.remove_lower[0], m.parameters.remove_lower[1],
+                 m.parameters.remove_lower[2]);
+  n.upper = Vec3(m.parameters.remove_upper[0], m.parameters.remove_upper[1],
+                 m.parameters.remove_upper[2]);
+  n.present = (n.upper - n.lower).minCoeff() > 0;
+  return n;
+}
+
+/// comparison.json's models: each particle model's figures, the adaptive run's growth, the FE
+/// reference's stiffness, time and memory.
+void add_model_figures(json& result, const CompareOptions& o, const CompareCases& c,
+                       const ModelSummaries& s, const ModelHistories& h, const fs::path& dir,
+                       const Notch& notch)
+{
+  const auto& curves = h.curves.curves;
   json& mc = result["models"]["coupled"];
-  mc = coupled_json(coupled, ch, cc_curve, "coupled");
+  mc = coupled_model_figures(s.coupled, h.coupled, curves.front().second, "coupled", dir, notch);
   json& md = result["models"]["full_dem"];
-  const auto dem_fracture = dh.get("fracture_energy", "full_dem/history.csv");
-  md = model_json(full_dem, dem_curve, dh.get("n_broken_bonds", "full_dem/history.csv"),
-                  dem_fracture.empty() ? 0.0 : dem_fracture.back(), dir / "full_dem");
-  if (adaptive)
+  const auto dem_fracture = h.full_dem.get("fracture_energy", "full_dem/history.csv");
+  md = model_figures(s.full_dem, curves.back().second,
+                     h.full_dem.get("n_broken_bonds", "full_dem/history.csv"),
+                     dem_fracture.empty() ? 0.0 : dem_fracture.back(), dir / "full_dem", notch);
+  if (c.adaptive)
   {
-    add_growth_figures(mc, coupled);
+    add_growth_figures(mc, s.coupled);
     json& mx = result["models"]["coupled_fixed"];
-    mx = coupled_json(fixed, *fh, curves.curves[1].second, "coupled_fixed");
-    mx["region_cells"] = coupled.at("region_cells_final");
+    mx = coupled_model_figures(s.coupled_fixed, *h.coupled_fixed, curves[1].second, "coupled_fixed",
+                               dir, notch);
+    mx["region_cells"] = s.coupled.at("region_cells_final");
     mx["region_file"] = (dir / "coupled_fixed_region.msh").string();
   }
   json& mf = result["models"]["full_fem"];
-  mf = {{"initial_stiffness", fe_stiffness},
-        {"wall_seconds", fe["wall_seconds"]},
-        {"peak_memory_bytes", fe["peak_memory_bytes"]},
-        {"n_dofs", fe.value("n_dofs", 0L)},
+  mf = {{"initial_stiffness", h.curves.fe_stiffness},
+        {"wall_seconds", s.full_fem.at("wall_seconds")},
+        {"peak_memory_bytes", s.full_fem.at("peak_memory_bytes")},
+        {"n_dofs", s.full_fem.value("n_dofs", 0L)},
         {"degree", o.fe_degree},
         {"output", (dir / "full_fem").string()}};
+}
+
+/// comparison.json's pairs: the coupled run (and the fixed-region one) against full DEM, the
+/// adaptive run against the fixed-region one, and the initial stiffnesses against full FE.
+void add_model_ratios(json& result, bool adaptive, double fe_stiffness)
+{
+  const json& mc = result["models"]["coupled"];
+  const json& md = result["models"]["full_dem"];
   result["coupled_vs_full_dem"] = versus(mc, md);
   if (adaptive)
   {
@@ -526,25 +391,59 @@ int run_compare(const CompareOptions& o)
   if (md.contains("initial_stiffness"))
     result["full_dem_vs_full_fem"]["initial_stiffness_ratio"] =
         md["initial_stiffness"].get<double>() / fe_stiffness;
-  result["particle_radius"] = cc.particles.particles.radius;
+}
 
-  // ---- 5. Files: the curves, the plot, comparison.json last.
+/// comparison.json's figures: the case, its load and notch, each model's figures and each
+/// pair's ratios.
+json collect_figures(const CompareOptions& o, const CompareCases& c, const ModelSummaries& s,
+                     const ModelHistories& h, const fs::path& dir)
+{
+  const Notch notch = notch_of(c.fe_model);
+  json result;
+  result["case"] = c.name;
+  result["load_group"] = c.fe_model.load.group;
+  result["load_direction"] = to_json(c.fe_model.load.direction);
+  if (notch.present)
+    result["notch"] = {{"lower", to_json(notch.lower)}, {"upper", to_json(notch.upper)}};
+  result["same_packing"] = c.layout.same_packing;
+  result["notes"] = c.layout.notes;
+  for (const auto& n : c.fe_model.notes)
+    result["notes"].push_back(n);
+  add_model_figures(result, o, c, s, h, dir, notch);
+  add_model_ratios(result, c.adaptive, h.curves.fe_stiffness);
+  result["particle_radius"] = c.coupled.particles.particles.radius;
+  return result;
+}
+
+/// The files: the curves, the plot (unless --no-plot), comparison.json last.
+void write_comparison(const CompareOptions& o, const CompareCases& c, const ModelCurves& curves,
+                      const fs::path& dir, json& result)
+{
   write_curves(dir, curves);
   result["plot"] = nullptr;
   std::vector<std::string> crack_models = {"coupled"};
-  if (adaptive)
+  if (c.adaptive)
     crack_models.push_back("coupled_fixed");
   crack_models.push_back("full_dem");
-  if (o.plot && write_plot(dir,
-                           case_name + ": " +
-                               (adaptive ? "adaptive coupled, fixed-region "
-                                           "coupled, full DEM, full FE"
-                                         : "coupled, full DEM, full FE"),
-                           direction, layout, crack_models))
+  const std::string title =
+      c.name + ": " +
+      (c.adaptive ? "adaptive coupled, fixed-region coupled, full DEM, full FE"
+                  : "coupled, full DEM, full FE");
+  if (o.plot && write_plot(dir, title, c.fe_model.load.direction, c.layout, crack_models))
     result["plot"] = "comparison.png";
   write_json_atomically(dir, "comparison.json", result);
+}
+} // namespace
 
-  // ---- 6. The few figures, as a table.
+int run_compare(const CompareOptions& o)
+{
+  const CompareCases cases = build_cases(o);
+  const fs::path dir = prepare_output_folder(o);
+  const ModelSummaries summaries = run_models(o, cases, dir);
+  ModelHistories histories = read_histories(cases, dir);
+  histories.curves.fe_stiffness = fe_stiffness_of(summaries.full_fem, cases.fe_model);
+  json result = collect_figures(o, cases, summaries, histories, dir);
+  write_comparison(o, cases, histories.curves, dir, result);
   print_table(result);
   std::printf("compare: wrote %s\n", (dir / "comparison.json").c_str());
   return 0;

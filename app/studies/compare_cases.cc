@@ -2,6 +2,7 @@
 #include "app/studies/compare_cases.h"
 #include "app/input/case_file.h"
 #include "app/input/dem_parameters.h"
+#include "app/input/group_load_parameters.h"
 #include "app/job/provenance.h"
 #include "app/studies/verify.h"
 #include "app/studies/verify_report.h"

@@ -1,17 +1,13 @@
 # Case files and the messages of bad input (included by tests/app/CMakeLists.txt; uses its
-# error_test, example_test's OUT, EX and BAD).
+# run_and_check, error_test, app_python_test, OUT, EX and BAD).
 
 # ---- JSON case files ----------------------------------------------------------------------------
 # The cantilever of paper case 1 as a .json case (groups, a load named tip_load, numbers, a
 # boolean, deal.II's long form of an entry, a load's own key named "value"), static solver:
 # eq. 29's 8.534242 mm to 1e-6, as cantilever_static.
-add_test(NAME json_case_cantilever
-  COMMAND dembridge run ${CMAKE_CURRENT_SOURCE_DIR}/data/cantilever.json --output-dir ${OUT}/json_case_cantilever)
-set_tests_properties(json_case_cantilever PROPERTIES FIXTURES_SETUP json_case_cantilever)
-add_test(NAME json_case_cantilever_check
-  COMMAND check_summary ${OUT}/json_case_cantilever/summary.json tip_deflection near 8.534242e-3 1e-6
-          n_particles near 11 0 n_bonds near 10 0)
-set_tests_properties(json_case_cantilever_check PROPERTIES FIXTURES_REQUIRED json_case_cantilever)
+run_and_check(json_case_cantilever ${CMAKE_CURRENT_SOURCE_DIR}/data/cantilever.json
+  json_case_cantilever CHECK tip_deflection near 8.534242e-3 1e-6 n_particles near 11 0
+  n_bonds near 10 0)
 
 # Round trip: an example's complete parameter set written as .json (deal.II's print of the
 # ParameterHandler, summary.json's "parameters") runs to the .prm run's summary, every figure
@@ -20,7 +16,6 @@ set_tests_properties(json_case_cantilever_check PROPERTIES FIXTURES_REQUIRED jso
 # (bending_notched_failure, compression_failure, tension_failure, coupled_ball_region,
 # coupled_bending, coupled_compression, coupled_compression_failure, coupled_notched_bending,
 # fem_bending, fem_cantilever), are not run twice here: they use the same reader.
-find_program(CASE_PYTHON3 python3)
 set(_json_round_trip_reused cantilever:cantilever_timoshenko compression_cubic:compression_cubic_static
     bending_cubic:bending_cubic_static fem_compression:fem_compression_app
     beam_simply_supported:beam_simply_supported beam_free_vibration:beam_free_vibration
@@ -29,24 +24,18 @@ set(_json_round_trip_run bending_random compression_hcp compression_random tensi
 if(TARGET dembridge_coupling)
   list(APPEND _json_round_trip_run coupled_wave)
 endif()
-if(CASE_PYTHON3)
-  foreach(_pair IN LISTS _json_round_trip_reused)
-    string(REPLACE ":" ";" _pair ${_pair})
-    list(GET _pair 0 _example)
-    list(GET _pair 1 _run)
-    add_test(NAME json_round_trip_${_example}
-      COMMAND ${CASE_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/json_round_trip.py $<TARGET_FILE:dembridge>
-              ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example} ${OUT}/${_run})
-    set_tests_properties(json_round_trip_${_example} PROPERTIES FIXTURES_REQUIRED ${_run})
-  endforeach()
-  foreach(_example IN LISTS _json_round_trip_run)
-    add_test(NAME json_round_trip_${_example}
-      COMMAND ${CASE_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/json_round_trip.py $<TARGET_FILE:dembridge>
-              ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example})
-  endforeach()
-else()
-  skipped_test(json_round_trip "python3 not found")
-endif()
+foreach(_pair IN LISTS _json_round_trip_reused)
+  string(REPLACE ":" ";" _pair ${_pair})
+  list(GET _pair 0 _example)
+  list(GET _pair 1 _run)
+  app_python_test(json_round_trip_${_example} json_round_trip.py $<TARGET_FILE:dembridge>
+    ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example} ${OUT}/${_run})
+  set_tests_properties(json_round_trip_${_example} PROPERTIES FIXTURES_REQUIRED ${_run})
+endforeach()
+foreach(_example IN LISTS _json_round_trip_run)
+  app_python_test(json_round_trip_${_example} json_round_trip.py $<TARGET_FILE:dembridge>
+    ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example})
+endforeach()
 
 # JSON input deal.II's reader took silently or reported unclearly: a key or subsection given
 # twice, a comment, a list; and the messages name the whole key (a name with '_' was cut).
@@ -64,12 +53,8 @@ error_test(json_group_without_subsection ${JSON_CASE} "cantilever.json: Groups/n
 
 # ---- Messages that named the wrong thing, or nothing ----------------------------------------------
 # A UTF-8 byte-order mark before the first line is read as absent: the static cantilever.
-add_test(NAME case_file_byte_order_mark
-  COMMAND dembridge run ${CMAKE_CURRENT_SOURCE_DIR}/data/byte_order_mark.prm --output-dir ${OUT}/byte_order_mark)
-set_tests_properties(case_file_byte_order_mark PROPERTIES FIXTURES_SETUP byte_order_mark)
-add_test(NAME case_file_byte_order_mark_check
-  COMMAND check_summary ${OUT}/byte_order_mark/summary.json tip_deflection near 8.534242e-3 1e-6)
-set_tests_properties(case_file_byte_order_mark_check PROPERTIES FIXTURES_REQUIRED byte_order_mark)
+run_and_check(case_file_byte_order_mark ${CMAKE_CURRENT_SOURCE_DIR}/data/byte_order_mark.prm
+  byte_order_mark CHECK tip_deflection near 8.534242e-3 1e-6)
 error_test(case_file_is_directory ${BAD} "bad: is a directory, not a case file")
 error_test(walls_named_twice ${EX}/compression_failure.prm "compression_failure.prm: Walls/names: 'lower' is listed twice" --set "Walls/names=lower, lower")
 error_test(wall_not_listed ${EX}/compression_failure.prm "compression_failure.prm: subsection 'Wall upper' is not named in Walls/names \\(lower\\)" --set "Walls/names=lower")
