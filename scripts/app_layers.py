@@ -10,7 +10,7 @@ import pathlib
 import re
 import sys
 
-ORDER = ["job", "input", "checkpoint", "output", "runs", "studies", "cli"]
+ORDER = ["input", "job", "checkpoint", "output", "runs", "studies", "cli"]
 
 
 def main():
