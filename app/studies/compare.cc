@@ -4,6 +4,7 @@
 #include "app/input/coupled_parameters.h"
 #include "app/input/dem_parameters.h"
 #include "app/job/provenance.h"
+#include "app/runs/fem_run.h"
 #include "app/runs/memory_guard.h"
 #include "app/studies/compare_cases.h"
 #include "app/studies/compare_plot.h"
@@ -14,7 +15,6 @@
 #include "coupling/full_models.h"
 #include "dem/core/output_file.h"
 #include "dem/measurements/failure_measurements.h"
-#include "fem/fem_case.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -413,7 +413,7 @@ int run_compare(const CompareOptions& o)
             << (dir / "full_fem").string() << ")" << std::endl;
   fs::create_directories(dir / "full_fem");
   const auto fe_start = std::chrono::steady_clock::now();
-  json fe = fem::run_case(fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
+  json fe = run_fem_case(fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
   fe["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fe_start).count();
   fe["peak_memory_bytes"] = peak_memory_bytes();
