@@ -1,4 +1,6 @@
-// dembridge::fem — the entry point the app calls for "set Mode = fem".
+// dembridge::fem — the entry point the app calls for "set Mode = fem" (and for the FE models of
+// verify and compare): runs and measures a case; the caller, told of the solved state and of
+// every step, writes the files (app/runs/fem_run.h).
 #pragma once
 
 #include <deal.II/base/mpi.h>
