@@ -1,4 +1,5 @@
-// dembridge::fem — run a FEM case from parsed parameters and summarise it.
+// dembridge::fem — run a FEM case from parsed parameters and measure it; the caller writes the
+// files (fem_case.h).
 #include "fem_case.h"
 
 #include "elastic_problem.h"
@@ -6,14 +7,12 @@
 #include "parameters.h"
 #include "reaction_measurement.h"
 
-#include "dem/core/history_file.h"
 #include "dem/core/running_series.h"
 #include "dem/core/state_archive.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -28,17 +27,15 @@ void declare_parameters(ParameterHandler& prm)
 
 namespace
 {
-/// deal.II's timer table goes to OUTPUT/timing.log (written by rank 0), not the terminal.
-void write_timer_log(const TimerOutput& timer, const std::filesystem::path& output_dir,
-                     MPI_Comm comm)
+/// deal.II's timer table as text (rank 0; empty elsewhere): the caller writes it where it
+/// keeps logs, not to the terminal.
+std::string timing_table(const TimerOutput& timer, MPI_Comm comm)
 {
   const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  std::ofstream log;
-  if (root)
-    log.open(output_dir / "timing.log");
+  std::ostringstream table;
   std::streambuf* terminal = std::cout.rdbuf();
-  if (root && log)
-    std::cout.rdbuf(log.rdbuf());
+  if (root)
+    std::cout.rdbuf(table.rdbuf());
   try
   {
     timer.print_wall_time_statistics(comm);
@@ -49,12 +46,13 @@ void write_timer_log(const TimerOutput& timer, const std::filesystem::path& outp
     throw;
   }
   std::cout.rdbuf(terminal);
+  return table.str();
 }
 
-nlohmann::json run_static(const Parameters& p, const std::filesystem::path& output_dir,
-                          MPI_Comm comm)
+/// Assembles and solves the static problem, saying what runs (assembly and the AMG solve of a
+/// large mesh take minutes); the solver's iterations.
+unsigned int solve_static(ElasticProblem& problem, MPI_Comm comm)
 {
-  ElasticProblem problem(p, comm);
   ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
   problem.make_grid();
   problem.setup_system();
@@ -65,7 +63,6 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
                              free +
                              "), so the static problem has no unique solution; hold "
                              "more components (e.g. 'points = X,Y,Z: xyz')");
-  // why: assembly and the AMG solve of a large mesh take minutes; say what is running
   Timer phase;
   pcout << "FEM static: assembling ..." << std::endl;
   problem.assemble_system(/*condense=*/true);
@@ -75,13 +72,12 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
   const unsigned int iterations = problem.solve();
   pcout << "FEM static: CG + BoomerAMG converged in " << iterations << " iterations, "
         << phase.wall_time() << " s" << std::endl;
+  return iterations;
+}
 
-  nlohmann::json summary;
-  summary["n_dofs"] = problem.n_dofs();
-  summary["n_cells"] = problem.n_cells();
-  summary["solver_iterations"] = iterations;
-  summary["strain_energy"] = problem.strain_energy();
-
+/// The deflection, reactions and mean displacements FEM/Measurements asks for.
+void measure_static(ElasticProblem& problem, const Parameters& p, nlohmann::json& summary)
+{
   if (!p.deflection_points.empty())
   {
     const std::string where = "FEM/Measurements/deflection points";
@@ -121,18 +117,35 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
               double(group.points.size());
     summary["mean_displacements"][group.name] = {mean[0], mean[1], mean[2]};
   }
+}
+
+/// The mean stress in the slabs of FEM/Measurements/stress layers.
+nlohmann::json stress_layer_figures(const ElasticProblem& problem, const Parameters& p)
+{
+  const auto layers = problem.layer_stresses(p.stress_layer_axis, p.stress_layer_edges);
+  nlohmann::json sigma = nlohmann::json::array();
+  for (const auto& s : layers.sigma)
+    sigma.push_back(
+        {{s[0][0], s[0][1], s[0][2]}, {s[1][0], s[1][1], s[1][2]}, {s[2][0], s[2][1], s[2][2]}});
+  return {{"axis", std::string(1, char('x' + p.stress_layer_axis))},
+          {"edges", p.stress_layer_edges},
+          {"volume", layers.volume},
+          {"sigma", sigma}};
+}
+
+CaseResult run_static(const Parameters& p, MPI_Comm comm, CaseObserver& observer)
+{
+  ElasticProblem problem(p, comm);
+  const unsigned int iterations = solve_static(problem, comm);
+  CaseResult result;
+  nlohmann::json& summary = result.figures;
+  summary["n_dofs"] = problem.n_dofs();
+  summary["n_cells"] = problem.n_cells();
+  summary["solver_iterations"] = iterations;
+  summary["strain_energy"] = problem.strain_energy();
+  measure_static(problem, p, summary);
   if (p.stress_layer_axis >= 0)
-  {
-    const auto layers = problem.layer_stresses(p.stress_layer_axis, p.stress_layer_edges);
-    nlohmann::json sigma = nlohmann::json::array();
-    for (const auto& s : layers.sigma)
-      sigma.push_back(
-          {{s[0][0], s[0][1], s[0][2]}, {s[1][0], s[1][1], s[1][2]}, {s[2][0], s[2][1], s[2][2]}});
-    summary["stress_layers"] = {{"axis", std::string(1, char('x' + p.stress_layer_axis))},
-                                {"edges", p.stress_layer_edges},
-                                {"volume", layers.volume},
-                                {"sigma", sigma}};
-  }
+    summary["stress_layers"] = stress_layer_figures(problem, p);
   const auto times = problem.timer().get_summary_data(TimerOutput::total_wall_time);
   for (const auto& [section, seconds] : times)
   {
@@ -140,15 +153,15 @@ nlohmann::json run_static(const Parameters& p, const std::filesystem::path& outp
     std::replace(key.begin(), key.end(), ' ', '_');
     summary["timing"][key + "_seconds"] = Utilities::MPI::max(seconds, comm);
   }
-  if (p.write_vtu)
-    problem.output_results(output_dir, 0, 0.0);
-  write_timer_log(problem.timer(), output_dir, comm);
-  return summary;
+  observer.on_solved(problem);
+  result.timing_table = timing_table(problem.timer(), comm);
+  return result;
 }
+
 /// What the dynamics loop carries from step to step beside the continuum (a checkpoint's
-/// /fem_run/): the length of history.csv so far, the running summaries of the energies and
-/// the zero crossings that the summary reads at the end (a few numbers however long the run),
-/// the probe component followed, the next checkpoint time.
+/// /fem_run/): the steps done, the running summaries of the energies and the zero crossings
+/// that the summary reads at the end (a few numbers however long the run), the probe component
+/// followed, the next checkpoint time, the caller's history length at the checkpoint.
 struct DynamicsLoopState
 {
   long steps = 0; ///< steps done
@@ -158,7 +171,7 @@ struct DynamicsLoopState
   double previous_value = 0, previous_time = 0;
   int component = 0;
   double next_checkpoint_time = 0;
-  long history_bytes = 0; ///< history.csv's length at the checkpoint (rank 0)
+  long history_bytes = 0; ///< the caller's history length at the checkpoint (rank 0)
 
   void visit(dem::StateArchive& a)
   {
@@ -177,78 +190,76 @@ struct DynamicsLoopState
   }
 };
 
-// Explicit dynamics: n steps of size factor * dt_stable; history.csv with the probe
-// displacements and the energies; the natural frequency from the zero crossings of the first
-// probe's dominant displacement component (free vibration about u = 0). With checkpoints the
-// loop's state and the continuum's are saved between steps and restored before the first.
-nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& output_dir,
-                            MPI_Comm comm, const DynamicsCheckpoints* checkpoints)
+/// Explicit dynamics: n steps of size factor * dt_stable; the probes' displacements and the
+/// energies of every step go to the observer; the natural frequency from the zero crossings of
+/// the first probe's dominant displacement component (free vibration about u = 0). With
+/// checkpoints the loop's state and the continuum's are saved between steps and restored
+/// before the first.
+class DynamicsRun
 {
-  ExplicitDynamics problem(p, comm);
-  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  ConditionalOStream pcout(std::cout, root);
-  problem.setup();
-  const double dt = p.time_step_factor * problem.stable_time_step();
-  pcout << "FEM dynamics: " << problem.n_cells() << " cells, " << problem.n_dofs()
-        << " dofs, stable step " << problem.stable_time_step() << " s, step " << dt << " s"
-        << std::endl;
-
-  std::vector<PointProbe> probes;
-  for (const auto& x : p.probe_points)
-    probes.push_back(problem.make_probe(x, "FEM/Dynamics/probe points"));
-  DynamicsLoopState loop;
-  if (!probes.empty())
+public:
+  DynamicsRun(const Parameters& parameters, MPI_Comm communicator, CaseObserver& case_observer,
+              const DynamicsCheckpoints* dynamics_checkpoints)
+      : p(parameters), comm(communicator), observer(case_observer),
+        checkpoints(dynamics_checkpoints), problem(parameters, communicator),
+        root(Utilities::MPI::this_mpi_process(communicator) == 0)
   {
-    const Tensor<1, 3> u0 = problem.probe_vector(probes[0]);
-    for (unsigned int d = 1; d < 3; ++d)
-      if (std::abs(u0[d]) > std::abs(u0[loop.component]))
-        loop.component = int(d);
   }
-  const double interval = checkpoints ? checkpoints->interval : 0.0;
-  const double wall_interval = checkpoints ? checkpoints->wall_interval : 0.0;
-  loop.next_checkpoint_time = interval;
 
-  std::ostringstream header;
-  header << "step,time";
-  for (unsigned int k = 0; k < probes.size(); ++k)
-    header << ",probe" << k << "_ux,probe" << k << "_uy,probe" << k << "_uz";
-  header << ",kinetic_energy,kinetic_energy_shadow,strain_energy,load_potential,"
-            "total_energy,shadow_energy\n";
-  const auto visit = [&](dem::StateArchive& a)
+  CaseResult run()
   {
-    problem.visit_state(a);
-    loop.visit(a);
-  };
-  if (checkpoints && checkpoints->resume)
-  {
-    if (root)
-      checkpoints->read(visit);
-    problem.scatter_state(); // collective: each rank's part of the continuum
-    broadcast_state(comm, [&](dem::StateArchive& a) { loop.visit(a); });
-    if (root)
-      remove_later_fe_snapshots(output_dir, p.base_name, problem.snapshot_records());
+    start();
+    for (unsigned int n = unsigned(loop.steps); n < p.n_steps; ++n)
+    {
+      advance(n);
+      loop.steps = long(n) + 1;
+      if (checkpoint_due() && n + 1 < p.n_steps) // none after the last step: the run completes
+        checkpoint();
+      if (checkpoints && checkpoints->after_step)
+        checkpoints->after_step(loop.steps);
+    }
+    observer.on_dynamics_end(problem);
+    CaseResult result;
+    result.figures = figures();
+    result.timing_table = timing_table(problem.timer(), comm);
+    return result;
   }
-  // history.csv: the header (a resumed run's file cut back to its checkpoint), then one row a step
-  dem::HistoryFile history_file;
-  std::ostream& history = history_file.stream();
-  if (root)
+
+private:
+  /// Sets the continuum up, picks the followed component, restores a resumed run's state and
+  /// tells the observer where the run starts.
+  void start()
   {
+    ConditionalOStream pcout(std::cout, root);
+    problem.setup();
+    dt = p.time_step_factor * problem.stable_time_step();
+    pcout << "FEM dynamics: " << problem.n_cells() << " cells, " << problem.n_dofs()
+          << " dofs, stable step " << problem.stable_time_step() << " s, step " << dt << " s"
+          << std::endl;
+    for (const auto& x : p.probe_points)
+      probes.push_back(problem.make_probe(x, "FEM/Dynamics/probe points"));
+    if (!probes.empty())
+    {
+      const Tensor<1, 3> u0 = problem.probe_vector(probes[0]);
+      for (unsigned int d = 1; d < 3; ++d)
+        if (std::abs(u0[d]) > std::abs(u0[loop.component]))
+          loop.component = int(d);
+    }
+    loop.next_checkpoint_time = checkpoints ? checkpoints->interval : 0.0;
     const bool resumed = checkpoints && checkpoints->resume;
-    history_file.open(output_dir / "history.csv", resumed);
     if (resumed)
-      history_file.resume_at(loop.history_bytes);
-    else
-      history << header.str();
+    {
+      if (root)
+        checkpoints->read([this](dem::StateArchive& a) { visit(a); });
+      problem.scatter_state(); // collective: each rank's part of the continuum
+      broadcast_state(comm, [&](dem::StateArchive& a) { loop.visit(a); });
+    }
+    observer.on_dynamics_start(problem, {probes.size(), loop.steps, resumed, loop.history_bytes});
+    last_checkpoint = std::chrono::steady_clock::now();
   }
-  if (p.write_vtu && loop.steps == 0)
-    problem.output_results(output_dir, 0, 0.0);
 
-  using clock = std::chrono::steady_clock;
-  auto last_checkpoint = clock::now();
-  std::ostringstream row;
-  row.precision(12);
-  std::vector<Tensor<1, 3>> u; // the probes' displacements, refilled each step
-  for (unsigned int n = unsigned(loop.steps); n < p.n_steps; ++n)
+  /// Step n: the probes at t_n, the step, the energies' series and the zero crossings.
+  void advance(const unsigned int n)
   {
     const double t_n = problem.time();
     u.clear();
@@ -271,19 +282,14 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
       loop.previous_value = value;
       loop.previous_time = t_n;
     }
-    if (root)
-    {
-      row.str("");
-      row << n << "," << t_n;
-      for (const auto& v : u)
-        row << "," << v[0] << "," << v[1] << "," << v[2];
-      row << "," << e.kinetic << "," << e.kinetic_shadow << "," << e.strain << ","
-          << e.load_potential << "," << e.total() << "," << e.shadow_total() << "\n";
-      history << row.str();
-    }
-    if (p.write_vtu && p.output_every > 0 && (n + 1) % p.output_every == 0)
-      problem.output_results(output_dir, (n + 1) / p.output_every, problem.time());
-    loop.steps = long(n) + 1;
+    observer.on_step(problem, {n, t_n, u, e});
+  }
+
+  /// A checkpoint is due after this step: by simulated time, or by rank 0's wall clock.
+  bool checkpoint_due()
+  {
+    const double interval = checkpoints ? checkpoints->interval : 0.0;
+    const double wall_interval = checkpoints ? checkpoints->wall_interval : 0.0;
     bool due = false;
     if (interval > 0 && problem.time() + 0.5 * dt >= loop.next_checkpoint_time)
     {
@@ -295,54 +301,72 @@ nlohmann::json run_dynamics(const Parameters& p, const std::filesystem::path& ou
     {
       // why: the ranks' clocks differ and a checkpoint is collective: rank 0's clock decides
       const bool late =
-          std::chrono::duration<double>(clock::now() - last_checkpoint).count() >= wall_interval;
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
+              .count() >= wall_interval;
       due = Utilities::MPI::broadcast(comm, late, 0) || due;
     }
-    if (due && n + 1 < p.n_steps) // none after the last step: the run is about to complete
-    {
-      problem.gather_state(); // collective
-      if (root)
-      {
-        loop.history_bytes = long(history_file.durable_size());
-        checkpoints->write(loop.steps, problem.time(), visit);
-      }
-      last_checkpoint = clock::now();
-    }
-    if (checkpoints && checkpoints->after_step)
-      checkpoints->after_step(loop.steps);
+    return due;
   }
-  history_file.close(); // its last rows are written: a failure names the file and the reason
-  if (p.write_vtu && (p.output_every == 0 || p.n_steps % p.output_every != 0))
-    problem.output_results(output_dir, p.output_every == 0 ? 1 : p.n_steps / p.output_every + 1,
-                           problem.time());
-  const dem::RunningSeries& shadow = loop.shadow;
 
-  nlohmann::json summary;
-  summary["n_dofs"] = problem.n_dofs();
-  summary["n_cells"] = problem.n_cells();
-  summary["steps"] = p.n_steps;
-  summary["time_step"] = dt;
-  summary["stable_time_step"] = problem.stable_time_step();
-  summary["end_time"] = problem.time();
-  if (shadow.count > 0 && shadow.first != 0)
+  void checkpoint()
   {
-    summary["initial_energy"] = shadow.first;
-    summary["shadow_energy_relative_oscillation"] = shadow.relative_range();
-    // drift: the least-squares line's change over the run, relative to H_0
-    summary["shadow_energy_relative_drift"] = shadow.fitted_change() / std::abs(shadow.first);
-    summary["total_energy_relative_oscillation"] = loop.total.relative_range();
+    problem.gather_state(); // collective
+    if (root)
+    {
+      loop.history_bytes = observer.history_length();
+      checkpoints->write(loop.steps, problem.time(), [this](dem::StateArchive& a) { visit(a); });
+    }
+    last_checkpoint = std::chrono::steady_clock::now();
   }
-  if (loop.crossings >= 2)
+
+  /// A checkpoint's content: the continuum's state and the loop's.
+  void visit(dem::StateArchive& a)
   {
-    // Successive zero crossings are half a period apart: first to last crossing.
-    const double half_period =
-        (loop.last_crossing - loop.first_crossing) / double(loop.crossings - 1);
-    summary["natural_frequency"] = 1.0 / (2.0 * half_period);
-    summary["zero_crossings"] = loop.crossings;
+    problem.visit_state(a);
+    loop.visit(a);
   }
-  write_timer_log(problem.timer(), output_dir, comm);
-  return summary;
-}
+
+  nlohmann::json figures() const
+  {
+    const dem::RunningSeries& shadow = loop.shadow;
+    nlohmann::json summary;
+    summary["n_dofs"] = problem.n_dofs();
+    summary["n_cells"] = problem.n_cells();
+    summary["steps"] = p.n_steps;
+    summary["time_step"] = dt;
+    summary["stable_time_step"] = problem.stable_time_step();
+    summary["end_time"] = problem.time();
+    if (shadow.count > 0 && shadow.first != 0)
+    {
+      summary["initial_energy"] = shadow.first;
+      summary["shadow_energy_relative_oscillation"] = shadow.relative_range();
+      // drift: the least-squares line's change over the run, relative to H_0
+      summary["shadow_energy_relative_drift"] = shadow.fitted_change() / std::abs(shadow.first);
+      summary["total_energy_relative_oscillation"] = loop.total.relative_range();
+    }
+    if (loop.crossings >= 2)
+    {
+      // Successive zero crossings are half a period apart: first to last crossing.
+      const double half_period =
+          (loop.last_crossing - loop.first_crossing) / double(loop.crossings - 1);
+      summary["natural_frequency"] = 1.0 / (2.0 * half_period);
+      summary["zero_crossings"] = loop.crossings;
+    }
+    return summary;
+  }
+
+  const Parameters& p;
+  MPI_Comm comm;
+  CaseObserver& observer;
+  const DynamicsCheckpoints* checkpoints;
+  ExplicitDynamics problem;
+  const bool root;
+  double dt = 0;
+  std::vector<PointProbe> probes;
+  DynamicsLoopState loop;
+  std::vector<Tensor<1, 3>> u; ///< the probes' displacements, refilled each step
+  std::chrono::steady_clock::time_point last_checkpoint;
+};
 } // namespace
 
 void remove_later_fe_snapshots(const std::filesystem::path& dir, const std::string& base,
@@ -361,24 +385,17 @@ void remove_later_fe_snapshots(const std::filesystem::path& dir, const std::stri
   }
 }
 
-nlohmann::json run_case(const ParameterHandler& prm, const std::filesystem::path& output_dir,
-                        MPI_Comm comm, const DynamicsCheckpoints* checkpoints)
+CaseResult run_case(const Parameters& p, MPI_Comm comm, CaseObserver& observer,
+                    const DynamicsCheckpoints* checkpoints)
 {
-  return run_case(parse_parameters(prm), output_dir, comm, checkpoints);
-}
-
-nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output_dir, MPI_Comm comm,
-                        const DynamicsCheckpoints* checkpoints)
-{
-  nlohmann::json summary;
   if (p.incompatible_modes && p.problem == ProblemKind::static_elasticity)
     throw std::runtime_error("FEM/incompatible modes: explicit dynamics and coupled runs only "
                              "(a static run's stresses and strain energy are evaluated on the "
                              "nodal field)");
-  if (p.problem == ProblemKind::static_elasticity)
-    summary = run_static(p, output_dir, comm);
-  else
-    summary = run_dynamics(p, output_dir, comm, checkpoints);
+  CaseResult result = p.problem == ProblemKind::static_elasticity
+                          ? run_static(p, comm, observer)
+                          : DynamicsRun(p, comm, observer, checkpoints).run();
+  nlohmann::json& summary = result.figures;
   summary["mode"] = "fem";
   summary["problem"] = p.problem == ProblemKind::static_elasticity ? "static" : "dynamics";
   summary["degree"] = p.degree;
@@ -388,6 +405,12 @@ nlohmann::json run_case(const Parameters& p, const std::filesystem::path& output
     summary["youngs_modulus_input"] = p.youngs_modulus;
     summary["poisson_ratio_input"] = p.poisson_ratio;
   }
-  return summary;
+  return result;
+}
+
+void write_fields(ElasticProblem& problem, const std::filesystem::path& dir,
+                  const unsigned int cycle, const double time)
+{
+  problem.output_results(dir, cycle, time);
 }
 } // namespace dembridge::fem

@@ -10,7 +10,7 @@
 #include "dem/core/types.h"
 #ifdef DEMBRIDGE_HAVE_FEM
 #include "app/runs/fem_checkpoints.h"
-#include "fem/fem_case.h"
+#include "app/runs/fem_run.h"
 #endif
 #ifdef DEMBRIDGE_HAVE_COUPLING
 #include "app/runs/coupled_run.h"
@@ -68,7 +68,8 @@ nlohmann::json run_mode(const MpiJob& job, dealii::ParameterHandler& prm, const 
   }
 #ifdef DEMBRIDGE_HAVE_FEM
   const auto fem_checkpoint = fem_checkpoints(prm, checkpoint);
-  nlohmann::json summary = fem::run_case(prm, abs_dir, MPI_COMM_WORLD, &fem_checkpoint);
+  nlohmann::json summary =
+      run_fem_case(fem::parse_parameters(prm), abs_dir, MPI_COMM_WORLD, &fem_checkpoint);
   if (checkpoint.resume)
     summary["resumed_from"] = {{"file", checkpoint.file.string()},
                                {"step", checkpoint.resumed_step},

@@ -5,6 +5,7 @@
 #include "app/input/dem_parameters.h"
 #include "app/job/provenance.h"
 #include "app/output/dem_figures.h"
+#include "app/runs/fem_run.h"
 #include "app/runs/memory_guard.h"
 #include "app/studies/compare_cases.h"
 #include "app/studies/compare_figures.h"
@@ -15,7 +16,6 @@
 #include "coupling/fixed_region.h"
 #include "coupling/full_models.h"
 #include "dem/core/output_file.h"
-#include "fem/fem_case.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -261,7 +261,7 @@ json run_full_fem(const CompareCases& c, const fs::path& dir, int k)
             << (dir / "full_fem").string() << ")" << std::endl;
   fs::create_directories(dir / "full_fem");
   const auto fe_start = std::chrono::steady_clock::now();
-  json fe = fem::run_case(c.fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
+  json fe = run_fem_case(c.fe_model.parameters, dir / "full_fem", MPI_COMM_WORLD);
   fe["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fe_start).count();
   fe["peak_memory_bytes"] = peak_memory_bytes();

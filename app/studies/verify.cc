@@ -10,9 +10,9 @@
 #include "dem/model/groups.h"
 #include "dem/model/model.h"
 #ifdef DEMBRIDGE_HAVE_FEM
+#include "app/runs/fem_run.h"
 #include "app/studies/verify_rows.h"
 #include "coupling/specimen_fe_model.h"
-#include "fem/fem_case.h"
 #include "fem/parameters_text.h"
 #endif
 #include <cmath>
@@ -278,7 +278,7 @@ json run_fe(const VerifyInputs& in, const ElasticConstants& material, const json
               "%s)\n",
               material.youngs_modulus, material.poisson_ratio, fe_dir.c_str());
   std::fflush(stdout);
-  json fe = fem::run_case(parameters, fe_dir, MPI_COMM_WORLD);
+  json fe = run_fem_case(parameters, fe_dir, MPI_COMM_WORLD);
   fe["case"] = "case.prm";
   write_json_atomically(fe_dir, "summary.json", fe);
   return fe;

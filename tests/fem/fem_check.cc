@@ -1,8 +1,9 @@
 // fem_check — physics checks of the deal.II continuum layer against analytical values.
 //   fem_check CHECK     with CHECK one of the names in main() below.
-// Every check builds its case in code, runs dembridge::fem::run_case and compares with a
-// closed-form value and a stated tolerance; results and rates are printed for the record.
-#include "fem/fem_case.h"
+// Every check builds its case in code, runs dembridge::fem::run_case (through the FE mode's run,
+// app/runs/fem_run.h, which writes the case's files) and compares with a closed-form value and a
+// stated tolerance; results and rates are printed for the record.
+#include "app/runs/fem_run.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -44,7 +45,7 @@ json run(const Settings& settings, const std::string& output, MPI_Comm c = comm)
       prm.leave_subsection();
   }
   std::filesystem::create_directories(output);
-  return dembridge::fem::run_case(prm, output, c);
+  return dembridge::app::run_fem_case(dembridge::fem::parse_parameters(prm), output, c);
 }
 
 int failures = 0;

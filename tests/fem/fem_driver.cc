@@ -1,8 +1,9 @@
 // fem_driver — runs one FEM case file without the app, for the fem tests.
 //   fem_driver CASE.prm OUTPUT_DIR [Section/Key=value ...]
 // Declares the FEM subsections (and the app's top-level "Mode" entry, so that case files
-// written for `dembridge run` are read unchanged), runs the case and writes summary.json.
-#include "fem/fem_case.h"
+// written for `dembridge run` are read unchanged), runs the case with the FE mode's output files
+// (app/runs/fem_run.h) and writes summary.json.
+#include "app/runs/fem_run.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -44,7 +45,8 @@ int main(int argc, char** argv)
     }
     const std::filesystem::path output = argv[2];
     std::filesystem::create_directories(output);
-    const nlohmann::json summary = dembridge::fem::run_case(prm, output, MPI_COMM_WORLD);
+    const nlohmann::json summary =
+        dembridge::app::run_fem_case(dembridge::fem::parse_parameters(prm), output, MPI_COMM_WORLD);
     if (rank0)
     {
       std::ofstream(output / "summary.json") << summary.dump(2) << "\n";
