@@ -30,7 +30,7 @@ import sys
 VOLATILE_KEYS = re.compile(
     r"(^|_)(wall|cpu|time_s|seconds|timing|memory|rss|peak_rss|host|date|started|version|git|"
     r"commit|build|provenance|command|cwd|path|output_dir|elapsed|speed|speedup|coupling_share|"
-    r"per_s|throughput)($|_)",
+    r"per_s|per_second|throughput)($|_)",
     re.IGNORECASE)
 SKIP_DIRS = {"CMakeFiles", "Testing", "__pycache__"}
 SKIP_NAMES = {"CTestTestfile.cmake", "cmake_install.cmake", "Makefile", "timing.log"}
