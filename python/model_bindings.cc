@@ -50,10 +50,11 @@ public:
   Model(const std::string& case_file, const std::vector<std::string>& overrides)
       : case_name_(fs::path(case_file).filename().string())
   {
+    // reading names the file or the override itself, as `dembridge run` does
+    auto prm = rethrow_as_case_error([&] { return app::read_case(case_file, overrides); });
     with_case_name(
         [&]
         {
-          auto prm = app::read_case(case_file, overrides);
           if (prm->get("Mode") != "dem")
             throw dem::InputError("Mode: " + prm->get("Mode") +
                                   ": dembridge.Model builds DEM cases (Mode = dem); "
