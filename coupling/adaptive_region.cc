@@ -43,7 +43,20 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
     : settings_(settings), lines_(lines), geometry_(g), strength_(std::move(strength)),
       packing_(std::move(packing)), spacing_(spacing)
 {
+  check_settings();
+  const double h = lay_out_cells();
+  require_whole_particles_in_cells();
+  // n = ceil(L / h - 1/2) (strictly deeper than L), plus the layers ahead
+  layers_ = int(std::floor(g.band_width / h - 0.5 + 1e-9)) + 1 + settings_.layers_ahead;
+  index_packing();
+}
+
+// The settings' ranges, their defaults from the geometry (averaging radius, envelope), the
+// bonds' strength.
+void AdaptiveRegion::check_settings()
+{
   auto& s = settings_;
+  const auto& g = geometry_;
   if (!(s.threshold > 0 && s.threshold <= 1))
   {
     std::ostringstream m;
@@ -77,6 +90,13 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
   if (!(strength_.tensile_strength > 0))
     throw std::runtime_error(where + "enabled: the particle model has no bond strengths to "
                                      "grow against (set Damage/failure and its strengths)");
+}
+
+// The grid's cells, their volumes and which lie in the envelope; returns the smallest cell size
+// in the envelope, m.
+double AdaptiveRegion::lay_out_cells()
+{
+  const auto& s = settings_;
   for (int d = 0; d < 3; ++d)
     n_[d] = int(lines_[d].size()) - 1;
   const std::size_t n = std::size_t(n_[0]) * n_[1] * n_[2];
@@ -104,7 +124,12 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
         if (inside)
           h = std::min(h, size.minCoeff());
       }
-  // the cells hold whole particles: no centre of the packing on a cell face inside the envelope
+  return h;
+}
+
+// The cells hold whole particles: no centre of the packing on a cell face inside the envelope.
+void AdaptiveRegion::require_whole_particles_in_cells() const
+{
   for (const Vec3& x : packing_)
     for (int d = 0; d < 3; ++d)
       if (to_nearest_line(lines_[d], x[d]) < 1e-3 * spacing_)
@@ -117,9 +142,12 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
           << spacing_ << " m) and the envelope's corners whole spacings from the domain's";
         throw std::runtime_error(m.str());
       }
-  // n = ceil(L / h - 1/2) (strictly deeper than L), plus the layers ahead
-  layers_ = int(std::floor(g.band_width / h - 0.5 + 1e-9)) + 1 + s.layers_ahead;
-  cell_particles_.assign(n, 0);
+}
+
+// Each cell's count of packing centres; each centre's packing index by its position.
+void AdaptiveRegion::index_packing()
+{
+  cell_particles_.assign(cell_volume_.size(), 0);
   for (std::size_t p = 0; p < packing_.size(); ++p)
   {
     const auto c = cell_of(packing_[p]);

@@ -166,6 +166,11 @@ private:
   Vec3 centre(std::size_t c) const;
   std::size_t count_particles(const std::vector<char>& cells) const;
   std::array<std::int64_t, 3> key(const Vec3& x) const;
+  /// The constructor's steps (adaptive_region.cc).
+  void check_settings();
+  double lay_out_cells();
+  void require_whole_particles_in_cells() const;
+  void index_packing();
 
   AdaptiveRegionSettings settings_;
   GridLines lines_;

@@ -8,7 +8,7 @@
 //   masses    a band particle p takes the share of its mass that the FE nodes around it lack:
 //               w_p = 1 - sum_I N_I(X_p) M_I^w / M_I,
 //             with M_I^w the node's lumped mass with the FE density weight w_M and M_I without
-//             it (coupled_problem.cc computes it). Where every FE node sits on a particle the two
+//             it (coupled_build.cc computes it). Where every FE node sits on a particle the two
 //             sides' masses then sum to the body's mass node by node; the continuous weights of
 //             handshake.h would add or lose a fraction f/2 of a particle layer's mass at the
 //             band's two edges, whose reflection (measured: 3.5e-4 of the incident energy for

@@ -127,7 +127,10 @@ void set_particle_region(std::shared_ptr<const RegionVolume> region, HandshakeGe
   packing.keep = [region](const Vec3& x) { return region->contains(x); };
 }
 
-std::unique_ptr<CoupledProblem> make_coupled_problem(CoupledCase& c, MPI_Comm comm)
+namespace
+{
+/// The handshake's geometry from the FE box and the particle box (or the region file).
+void set_geometry(CoupledCase& c)
 {
   auto& g = c.settings.geometry;
   const auto& p = c.particles.particles;
@@ -156,8 +159,11 @@ std::unique_ptr<CoupledProblem> make_coupled_problem(CoupledCase& c, MPI_Comm co
     if (c.pulse.centre < g.domain_lo[a] || c.pulse.centre > g.domain_hi[a])
       throw std::runtime_error("Coupling/pulse centre: lies outside the FE domain");
   }
+}
 
-  // Supports with a value: driven boundaries along the ramp (the FE supports are held at 0).
+/// Supports with a value: driven boundaries along the ramp (the FE supports are held at 0).
+void drive_valued_supports(CoupledCase& c)
+{
   std::vector<fem::BoundaryConstraint> held;
   for (const auto& b : c.continuum.boundary_constraints)
   {
@@ -177,52 +183,68 @@ std::unique_ptr<CoupledProblem> make_coupled_problem(CoupledCase& c, MPI_Comm co
     c.settings.driven.push_back(d);
   }
   c.continuum.boundary_constraints = held;
+}
 
-  // Every rank computes the tensor the same way (deterministic), so no broadcast is needed;
-  // the measured one is solved on rank 0 and broadcast.
-  if (c.tensor == TensorSource::measured)
+/// Every rank computes the tensor the same way (deterministic), so no broadcast is needed; the
+/// measured one is solved on rank 0 and broadcast.
+void set_continuum_tensor(CoupledCase& c, MPI_Comm comm)
+{
+  if (c.tensor != TensorSource::measured)
   {
-    std::vector<double> C(36, 0.0);
-    std::string error;
-    if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-      try
-      {
-        const auto t = continuum_tensor(c);
-        C.assign(t.begin(), t.end());
-      }
-      catch (const std::exception& e)
-      {
-        error = e.what();
-      }
-    error = dealii::Utilities::MPI::broadcast(comm, error, 0);
-    if (!error.empty())
-      throw std::runtime_error(error);
-    C = dealii::Utilities::MPI::broadcast(comm, C, 0);
-    std::copy(C.begin(), C.end(), c.settings.tensor.begin());
-  }
-  else
     c.settings.tensor = continuum_tensor(c);
+    return;
+  }
+  std::vector<double> C(36, 0.0);
+  std::string error;
+  if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+    try
+    {
+      const auto t = continuum_tensor(c);
+      C.assign(t.begin(), t.end());
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
+  error = dealii::Utilities::MPI::broadcast(comm, error, 0);
+  if (!error.empty())
+    throw std::runtime_error(error);
+  C = dealii::Utilities::MPI::broadcast(comm, C, 0);
+  std::copy(C.begin(), C.end(), c.settings.tensor.begin());
+}
 
+/// The wave runs' initial pulse on both sides, at the discrete phase speed of the side it
+/// starts in.
+void start_pulse(const CoupledCase& c, CoupledProblem& problem)
+{
+  Pulse pulse;
+  pulse.axis = c.pulse.axis;
+  pulse.centre = c.pulse.centre;
+  pulse.wavelength = c.pulse.wavelength;
+  pulse.amplitude = c.pulse.amplitude;
+  pulse.envelope = c.pulse.envelope;
+  pulse.direction = c.pulse.direction;
+  const int a = pulse.axis;
+  const double C11 = c.settings.tensor[6 * a + a];
+  const double speed = std::sqrt(C11 / c.continuum.density);
+  const double h =
+      pulse_side(c) > 0 ? c.settings.element_size[a] : 2 * c.particles.particles.radius;
+  pulse.speed = discrete_phase_speed(speed, h, problem.time_step(), pulse.wavelength);
+  const double dt = problem.time_step();
+  problem.set_initial_state([&](const Vec3& X) { return pulse_displacement(pulse, X); },
+                            [&](const Vec3& X) { return pulse_velocity(pulse, X, dt); });
+}
+} // namespace
+
+std::unique_ptr<CoupledProblem> make_coupled_problem(CoupledCase& c, MPI_Comm comm)
+{
+  set_geometry(c);
+  drive_valued_supports(c);
+  set_continuum_tensor(c, comm);
   auto problem = std::make_unique<CoupledProblem>(c.settings, c.continuum, c.particles, comm);
   problem->setup();
   if (pulse_side(c) != 0)
-  {
-    Pulse pulse;
-    pulse.axis = c.pulse.axis;
-    pulse.centre = c.pulse.centre;
-    pulse.wavelength = c.pulse.wavelength;
-    pulse.amplitude = c.pulse.amplitude;
-    pulse.envelope = c.pulse.envelope;
-    pulse.direction = c.pulse.direction;
-    const int a = pulse.axis;
-    const double C11 = c.settings.tensor[6 * a + a];
-    const double speed = std::sqrt(C11 / c.continuum.density);
-    const double h = pulse_side(c) > 0 ? c.settings.element_size[a] : 2 * p.radius;
-    pulse.speed = discrete_phase_speed(speed, h, problem->time_step(), pulse.wavelength);
-    const double dt = problem->time_step();
-    problem->set_initial_state([&](const Vec3& X) { return pulse_displacement(pulse, X); },
-                               [&](const Vec3& X) { return pulse_velocity(pulse, X, dt); });
-  }
+    start_pulse(c, *problem);
   return problem;
 }
 } // namespace dembridge::coupling

@@ -3,12 +3,13 @@
 // planes of the handshake band (s = 0 and s = L, handshake.h), with element size h_band across the
 // band and h = (h_x, h_y, h_z) elsewhere (each interval between planes gets equal cells of about
 // that size; with a far element size, cells of an interval that touches a band plane grow away
-// from it by a constant ratio per cell up to that size), and the cells of the particle-only region removed (they would carry
-// neither mass nor stiffness: 1 - alpha = 0 there). No hanging nodes. A particle region given as
-// a gmsh volume: band-sized cells over its bounding box, graded outside it, and the cells removed
-// whose centre and Gauss points all lie in the particle-only region (the band cuts the others).
-// Boundary names: the outer box faces x-min ... z-max (ids 0-5, as fem/mesh.h), and
-// "particle-region" (id 6) for the faces left where the particle-only cells were cut out.
+// from it by a constant ratio per cell up to that size), and the cells of the particle-only region
+// removed (they would carry neither mass nor stiffness: 1 - alpha = 0 there). No hanging nodes. A
+// particle region given as a gmsh volume: band-sized cells over its bounding box, graded outside
+// it, and the cells removed whose centre and Gauss points all lie in the particle-only region (the
+// band cuts the others). Boundary names: the outer box faces x-min ... z-max (ids 0-5, as
+// fem/mesh.h), and "particle-region" (id 6) for the faces left where the particle-only cells were
+// cut out.
 #include "coupling/handshake.h"
 #include "fem/mesh.h"
 #include <array>
@@ -18,7 +19,7 @@
 namespace dembridge::coupling
 {
 /// Volume of the removed (particle-only) cells around a vertex, an eighth of each cell: the share
-/// of a node's lumped Q1 mass that the cut took away (coupled_problem.cc shares the band's mass
+/// of a node's lumped Q1 mass that the cut took away (coupled_build.cc shares the band's mass
 /// by it).
 struct RemovedShare
 {

@@ -217,8 +217,20 @@ private:
   class Tie;
   friend class Tie;
   /// Builds both sides on the current geometry; @p adopt runs on rank 0 right after the particle
-  /// model is made (before blending): a growth hands the earlier state over there.
+  /// model is made (before blending): a growth hands the earlier state over there. Its steps
+  /// (coupled_build.cc) follow.
   void build(const std::function<void()>& adopt);
+  /// The continuum on the coupled mesh; @p removed receives the cut's mass shares at its nodes.
+  void build_continuum(std::vector<RemovedShare>& removed);
+  void build_particles(const std::function<void()>& adopt);
+  void locate_in_packing();
+  void measure_bond_families();
+  void refuse_motion_on_interface() const;
+  std::vector<double> band_mass_ratio(const std::vector<RemovedShare>& removed);
+  void blend_band(const std::vector<double>& ratio);
+  void make_particle_solver();
+  /// g = G u_I - u_p at the interface from both sides' current displacements.
+  void set_tie_gap();
   /// The adaptive region's grid, packing and first cells (adaptive_region.h).
   void prepare_adaptive_region();
   /// The current region as the handshake's volume and the packing's filter.
@@ -283,6 +295,17 @@ private:
   std::vector<GrowthEvent> growth_events_;
   GrowthCap growth_cap_;
   GrowthChecks growth_checks_;
+  /// The steps of grow_region (region_growth.cc), the earlier models handed over through
+  /// GrowthHandover.
+  struct GrowthHandover;
+  std::vector<char> add_region_cells(const std::vector<char>& cells);
+  void sample_continuum_at_joining(GrowthHandover& h);
+  void hand_over_earlier_models(GrowthHandover& h);
+  void adopt_particle_state(GrowthHandover& h);
+  void adopt_bond_state(GrowthHandover& h);
+  void renumber_crack_log(GrowthHandover& h);
+  void check_loaded_groups_kept(const dem::Model& old) const;
+  void continue_continuum(GrowthHandover& h);
   /// Checkpoints of an adaptive run: the region, the events, the carried works; a region that
   /// grew since the start is rebuilt before the models' state is read (region_growth.cc).
   void visit_adaptive_state(dem::StateArchive& a);

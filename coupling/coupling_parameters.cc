@@ -91,11 +91,10 @@ void parse_pulse(ParameterHandler& prm, CoupledCase& c)
     throw dem::InputError("Coupling/Pulse/wavelength: must be positive");
   prm.leave_subsection();
 }
-} // namespace
 
-void declare_coupling_parameters(ParameterHandler& prm)
+/// The band and the FE mesh around the particle region.
+void declare_band_and_mesh(ParameterHandler& prm)
 {
-  prm.enter_subsection("Coupling");
   prm.declare_entry("band width", "0", Double(0),
                     "Width L of the handshake band (m), inside the particle region along its "
                     "faces that lie inside the FE domain; at least two particle diameters. "
@@ -120,6 +119,11 @@ void declare_coupling_parameters(ParameterHandler& prm)
                     "this size (m; one value or x, y, z); 0: every cell of 'element size'.");
   prm.declare_entry("element growth", "1.2", Double(1, 2),
                     "Ratio of neighbouring cells' sizes where they grow away from the band.");
+}
+
+/// The continuum's tensor, the tie and its solve.
+void declare_tensor_and_tie(ParameterHandler& prm)
+{
   prm.declare_entry("continuum tensor", "closed form",
                     Selection("closed form|periodic|measured|file"),
                     "The continuum's elasticity tensor, from the particle region's packing: "
@@ -137,6 +141,11 @@ void declare_coupling_parameters(ParameterHandler& prm)
   prm.declare_entry("constraint solve", "exact", Selection("exact|lumped"),
                     "exact: the multipliers by CG on G M^-1 G^T + diag(1/m_p); lumped: its "
                     "row-sum diagonal (local, approximate).");
+}
+
+/// Damping of both sides, the driven supports' ramp, the rest criterion.
+void declare_damping_and_ramps(ParameterHandler& prm)
+{
   prm.declare_entry("mass damping", "0", Double(0),
                     "Mass-proportional damping c (1/s) on both sides (-c M v, -c m v): "
                     "quasi-static runs; its dissipation is booked.");
@@ -152,6 +161,11 @@ void declare_coupling_parameters(ParameterHandler& prm)
                     "Stop once at rest after the last ramp: the kinetic share of both sides "
                     "K / (K + U) below this at five consecutive records; 0: run to the end "
                     "time.");
+}
+
+/// Subsection Adaptive region (adaptive_region.h).
+void declare_adaptive_region(ParameterHandler& prm)
+{
   prm.enter_subsection("Adaptive region");
   prm.declare_entry("enabled", "false", Bool(),
                     "Grow the particle region while the run goes: FE cells whose averaged "
@@ -183,6 +197,11 @@ void declare_coupling_parameters(ParameterHandler& prm)
   prm.declare_entry("envelope upper", "", dealii::Patterns::Anything(),
                     "Upper corner x, y, z of that box (m); empty: the FE domain.");
   prm.leave_subsection();
+}
+
+/// Subsection Pulse: the wave runs' initial pulse.
+void declare_pulse(ParameterHandler& prm)
+{
   prm.enter_subsection("Pulse");
   prm.declare_entry("enabled", "false", Bool(),
                     "Start from a longitudinal pulse A exp(-(s/(e lambda))^2) cos(2 pi s / "
@@ -195,6 +214,17 @@ void declare_coupling_parameters(ParameterHandler& prm)
   prm.declare_entry("direction", "1", Integer(-1, 1),
                     "+1 or -1: the direction it travels along the axis.");
   prm.leave_subsection();
+}
+} // namespace
+
+void declare_coupling_parameters(ParameterHandler& prm)
+{
+  prm.enter_subsection("Coupling");
+  declare_band_and_mesh(prm);
+  declare_tensor_and_tie(prm);
+  declare_damping_and_ramps(prm);
+  declare_adaptive_region(prm);
+  declare_pulse(prm);
   prm.leave_subsection();
 }
 

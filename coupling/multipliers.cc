@@ -69,10 +69,7 @@ void MultiplierSolver::setup(const PointTransfer& transfer,
 // step's solve costs about a tenth of the pair of triangular solves with S.
 void MultiplierSolver::factorise()
 {
-  const std::size_t n = G_->n_points(), n_slots = G_->n_slots();
-  const auto& ptr = G_->row_pointers();
-  const auto& slot = G_->row_slots();
-  const auto& value = G_->row_values();
+  const std::size_t n_slots = G_->n_slots();
   // Usually M^-1 is the same in the three components at every slot (they differ only where a
   // support fixes some of a node's components): then one factor serves all three, and each step
   // is one pair of triangular solves with three right-hand sides.
@@ -82,17 +79,7 @@ void MultiplierSolver::factorise()
         shared_factor_ && inv_M_[3 * k] == inv_M_[3 * k + 1] && inv_M_[3 * k] == inv_M_[3 * k + 2];
   for (int c = 0; c < (shared_factor_ ? 1 : 3); ++c)
   {
-    const auto moves = [&](const std::size_t k) { return inv_M_[3 * k + c] > 0; };
-    std::vector<Eigen::Triplet<double>> t;
-    for (std::size_t p = 0; p < n; ++p)
-      for (unsigned int i = ptr[p]; i < ptr[p + 1]; ++i)
-        for (unsigned int j = ptr[p]; j < ptr[p + 1]; ++j)
-          if (moves(slot[i]) && moves(slot[j]))
-            t.emplace_back(int(slot[i]), int(slot[j]), value[i] * value[j] / inv_m_[p]);
-    for (std::size_t k = 0; k < n_slots; ++k) // a fixed slot: A_kk = 1, decoupled, y_k = 0
-      t.emplace_back(int(k), int(k), moves(k) ? 1.0 / inv_M_[3 * k + c] : 1.0);
-    Sparse A{long(n_slots), long(n_slots)};
-    A.setFromTriplets(t.begin(), t.end());
+    const Sparse A = slot_matrix(c);
     // A few hundred slots (a band across a beam) are inverted densely, per connected group of
     // slots: a step's solve is then one matrix-vector product per group, at the speed of dense
     // arithmetic without the blocking overhead of small triangular solves (measured on the
@@ -101,51 +88,7 @@ void MultiplierSolver::factorise()
     // sparse factor's memory.
     bool ok = true;
     if (n_slots <= dense_slots)
-    {
-      // connected groups of the slots' graph (A's sparsity)
-      std::vector<int> group(n_slots, -1);
-      int n_groups = 0;
-      for (std::size_t start = 0; start < n_slots; ++start)
-      {
-        if (group[start] >= 0)
-          continue;
-        std::vector<long> stack{long(start)};
-        group[start] = n_groups;
-        while (!stack.empty())
-        {
-          const long k = stack.back();
-          stack.pop_back();
-          for (Sparse::InnerIterator it(A, k); it; ++it)
-            if (group[it.row()] < 0)
-            {
-              group[it.row()] = n_groups;
-              stack.push_back(it.row());
-            }
-        }
-        ++n_groups;
-      }
-      blocks_[c].assign(n_groups, {});
-      for (std::size_t k = 0; k < n_slots; ++k)
-        blocks_[c][group[k]].slots.push_back((unsigned int)(k));
-      const Eigen::MatrixXd dense(A);
-      for (auto& b : blocks_[c])
-      {
-        const long m = long(b.slots.size());
-        Eigen::MatrixXd Ab(m, m);
-        for (long i = 0; i < m; ++i)
-          for (long j = 0; j < m; ++j)
-            Ab(i, j) = dense(b.slots[i], b.slots[j]);
-        const Eigen::LLT<Eigen::MatrixXd> llt(Ab);
-        ok = ok && llt.info() == Eigen::Success;
-        const Eigen::MatrixXd inverse = llt.solve(Eigen::MatrixXd::Identity(m, m));
-        b.inverse.resize(std::size_t(m * m));
-        for (long i = 0; i < m; ++i)
-          for (long j = 0; j < m; ++j)
-            b.inverse[std::size_t(i * m + j)] = inverse(i, j);
-        block_rhs_.resize(std::max(block_rhs_.size(), std::size_t(3 * m)));
-        block_y_.resize(block_rhs_.size());
-      }
-    }
+      ok = invert_dense_blocks(A, c);
     else
     {
       factor_[c] = std::make_unique<Eigen::SimplicialLLT<Sparse>>(A);
@@ -160,7 +103,98 @@ void MultiplierSolver::factorise()
     any_fixed_slot_ = any_fixed_slot_ || !(w > 0);
   rhs_.resize(long(n_slots), shared_factor_ ? 3 : 1);
   sol_.resize(long(n_slots), shared_factor_ ? 3 : 1);
-  // S q = b to round-off for a b with every component and scale (a check of the identity's use)
+  check_factorised_solve();
+}
+
+// A_c = W_c^-1 + G_c^T D^-1 G_c over the slots; a fixed slot (M^-1 = 0 in component c) has
+// A_kk = 1 and no coupling, so that y_k = 0.
+MultiplierSolver::Sparse MultiplierSolver::slot_matrix(const int c) const
+{
+  const std::size_t n = G_->n_points(), n_slots = G_->n_slots();
+  const auto& ptr = G_->row_pointers();
+  const auto& slot = G_->row_slots();
+  const auto& value = G_->row_values();
+  const auto moves = [&](const std::size_t k) { return inv_M_[3 * k + c] > 0; };
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t p = 0; p < n; ++p)
+    for (unsigned int i = ptr[p]; i < ptr[p + 1]; ++i)
+      for (unsigned int j = ptr[p]; j < ptr[p + 1]; ++j)
+        if (moves(slot[i]) && moves(slot[j]))
+          t.emplace_back(int(slot[i]), int(slot[j]), value[i] * value[j] / inv_m_[p]);
+  for (std::size_t k = 0; k < n_slots; ++k)
+    t.emplace_back(int(k), int(k), moves(k) ? 1.0 / inv_M_[3 * k + c] : 1.0);
+  Sparse A{long(n_slots), long(n_slots)};
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+namespace
+{
+/// The connected groups of the slots' graph (@p A's sparsity): each slot's group, numbered from
+/// 0 in the order of their first slots; @p n_groups receives their count.
+std::vector<int> connected_groups(const Eigen::SparseMatrix<double>& A, int& n_groups)
+{
+  const std::size_t n_slots = std::size_t(A.rows());
+  std::vector<int> group(n_slots, -1);
+  n_groups = 0;
+  for (std::size_t start = 0; start < n_slots; ++start)
+  {
+    if (group[start] >= 0)
+      continue;
+    std::vector<long> stack{long(start)};
+    group[start] = n_groups;
+    while (!stack.empty())
+    {
+      const long k = stack.back();
+      stack.pop_back();
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+        if (group[it.row()] < 0)
+        {
+          group[it.row()] = n_groups;
+          stack.push_back(it.row());
+        }
+    }
+    ++n_groups;
+  }
+  return group;
+}
+} // namespace
+
+// A_c^-1 per connected group of slots, dense; false when a group's Cholesky factor fails.
+bool MultiplierSolver::invert_dense_blocks(const Sparse& A, const int c)
+{
+  const std::size_t n_slots = G_->n_slots();
+  int n_groups = 0;
+  const std::vector<int> group = connected_groups(A, n_groups);
+  blocks_[c].assign(n_groups, {});
+  for (std::size_t k = 0; k < n_slots; ++k)
+    blocks_[c][group[k]].slots.push_back((unsigned int)(k));
+  const Eigen::MatrixXd dense(A);
+  bool ok = true;
+  for (auto& b : blocks_[c])
+  {
+    const long m = long(b.slots.size());
+    Eigen::MatrixXd Ab(m, m);
+    for (long i = 0; i < m; ++i)
+      for (long j = 0; j < m; ++j)
+        Ab(i, j) = dense(b.slots[i], b.slots[j]);
+    const Eigen::LLT<Eigen::MatrixXd> llt(Ab);
+    ok = ok && llt.info() == Eigen::Success;
+    const Eigen::MatrixXd inverse = llt.solve(Eigen::MatrixXd::Identity(m, m));
+    b.inverse.resize(std::size_t(m * m));
+    for (long i = 0; i < m; ++i)
+      for (long j = 0; j < m; ++j)
+        b.inverse[std::size_t(i * m + j)] = inverse(i, j);
+    block_rhs_.resize(std::max(block_rhs_.size(), std::size_t(3 * m)));
+    block_y_.resize(block_rhs_.size());
+  }
+  return ok;
+}
+
+// S q = b to round-off for a b with every component and scale (a check of the identity's use).
+void MultiplierSolver::check_factorised_solve()
+{
+  const std::size_t n = G_->n_points();
   std::vector<double> b(3 * n), q(3 * n), Sq(3 * n);
   for (std::size_t i = 0; i < b.size(); ++i)
     b[i] = std::sin(1.0 + 0.7 * double(i)) / inv_m_[i / 3];

@@ -95,6 +95,10 @@ private:
   /// process, particle tying, exact solve; multipliers.cc).
   using Sparse = Eigen::SparseMatrix<double>;
   static constexpr std::size_t dense_slots = 2000; ///< up to this many slots: dense inverses
+  /// The steps of factorise() (multipliers.cc).
+  Sparse slot_matrix(int c) const;
+  bool invert_dense_blocks(const Sparse& A, int c);
+  void check_factorised_solve();
   bool factorised_ = false;
   /// A_c^-1 of one connected group of slots (the bands of a region are separate groups), dense
   /// (symmetric: rows and columns alike): y = A^-1 r is then one matrix-vector product per step.

@@ -313,6 +313,23 @@ void CoupledProblem::visit_adaptive_state(dem::StateArchive& a)
   build(nullptr);
 }
 
+// What a growth hands from the earlier models to the new ones (grow_region's steps).
+struct CoupledProblem::GrowthHandover
+{
+  std::vector<char> old_cells;                         ///< the region before the growth
+  std::map<std::int32_t, std::array<Vec3, 4>> joining; ///< packing index: u, v, rotation, spin
+  double key_quantum = 0;                              ///< node positions' rounding, m
+  std::map<Key, Vec3> node_u, node_v;                  ///< the earlier continuum's nodes
+  dem::Model old;                                      ///< the earlier particle model
+  std::vector<std::int32_t> old_packing;               ///< its particles' packing indices
+  std::vector<dem::CrackEvent> cracks;                 ///< its solver's crack log
+  std::vector<double> old_tensile, old_shear;          ///< its bonds' own strengths, Pa
+  std::unique_ptr<Handshake> old_handshake;            ///< outlives old_fe (its weights)
+  std::unique_ptr<fem::ExplicitDynamics> old_fe;
+  std::vector<std::int32_t> id_of_old; ///< old particle -> new id
+  std::vector<long> new_bond;          ///< old bond -> new bond
+};
+
 GrowthEvent CoupledProblem::grow_region(const std::vector<char>& cells)
 {
   if (!adaptive_)
@@ -326,197 +343,23 @@ GrowthEvent CoupledProblem::grow_region(const std::vector<char>& cells)
   const std::size_t bonds_before = root_ ? model_.bonds.size() : 0;
   const std::size_t cells_before = adaptive_->n_region_cells();
 
-  // 2. the continuum at the centres that join: u, v and their rotations (one process: rank 0
-  // holds the points)
-  const std::vector<char> old_cells = adaptive_->cells();
-  std::vector<char> grown = cells;
-  for (std::size_t c = 0; c < grown.size() && c < old_cells.size(); ++c)
-    grown[c] = grown[c] || old_cells[c]; // no switching back
-  adaptive_->set_cells(grown);
-  std::vector<Vec3> fresh;
-  for (const Vec3& X : adaptive_->packing())
-    if (adaptive_->in_region(X) && !adaptive_->in_cells(old_cells, X))
-      fresh.push_back(X);
-  const double delta = 1e-3 * dem_case_.particles.radius;
-  std::vector<Vec3> points;
-  for (const Vec3& X : fresh)
-  {
-    points.push_back(X);
-    for (int d = 0; d < 3; ++d)
-      for (const double s : {-1.0, 1.0})
-        points.push_back(X + s * delta * Vec3::Unit(d));
-  }
-  std::map<std::int32_t, std::array<Vec3, 4>> taken; // packing index: u, v, rotation, spin
-  {
-    PointTransfer at;
-    at.reinit(*fe_, points, "Coupling/Adaptive region");
-    std::vector<double> slots, u, v;
-    at.gather(fe_->displacement(), slots);
-    at.interpolate(slots, u);
-    at.gather(fe_->velocity(), slots);
-    at.interpolate(slots, v);
-    auto value = [](const std::vector<double>& f, std::size_t p)
-    { return Vec3(f[3 * p], f[3 * p + 1], f[3 * p + 2]); };
-    for (std::size_t n = 0; n < fresh.size(); ++n)
-    {
-      const std::size_t p0 = 7 * n;
-      Eigen::Matrix3d gu, gv;
-      for (int d = 0; d < 3; ++d)
-      {
-        gu.col(d) = (value(u, p0 + 2 + 2 * d) - value(u, p0 + 1 + 2 * d)) / (2 * delta);
-        gv.col(d) = (value(v, p0 + 2 + 2 * d) - value(v, p0 + 1 + 2 * d)) / (2 * delta);
-      }
-      taken[adaptive_->packing_index(fresh[n])] = {
-          {value(u, p0), value(v, p0), half_curl(gu), half_curl(gv)}};
-    }
-  }
-
-  // 1./3. the earlier models' state by packing index, their works carried
-  const double q = 1e-6 * 2 * dem_case_.particles.radius;
-  std::map<Key, Vec3> node_u, node_v;
-  nodal_values(*fe_, q, node_u, node_v);
-  dem::Model old = std::move(model_);
-  const std::vector<std::int32_t> old_packing = packing_of_;
-  std::vector<dem::CrackEvent> cracks;
-  std::vector<double> old_tensile, old_shear;
-  if (root_)
-  {
-    const auto& e = solver_->energy();
-    carried_.dem_damping += e.damping;
-    carried_.dem_external += e.external;
-    carried_.dem_other += e.fracture + e.friction + e.contact_damping;
-    cracks = solver_->cracks();
-    auto& b = old.bonds;
-    old_tensile = b.tensile_strength;
-    old_shear = b.shear_strength;
-    for (std::size_t n = 0; n < blending_.band_bonds.size() && n < band_tensile_.size(); ++n)
-    {
-      old_tensile[blending_.band_bonds[n]] = band_tensile_[n];
-      old_shear[blending_.band_bonds[n]] = band_shear_[n];
-    }
-  }
-  {
-    const auto& f = fe_->energies();
-    carried_.fe_damping += f.damping;
-    carried_.fe_boundary_work += f.boundary_work;
-    carried_.multiplier_work_fe += f.outside_work;
-  }
-  solver_.reset(); // it held the old model's stores
-  auto old_fe = std::move(fe_);
-  auto old_handshake = std::move(handshake_);
-  apply_region();
-
-  std::vector<long> new_bond; // old bond -> new bond
+  GrowthHandover h;
+  h.old_cells = add_region_cells(cells);
+  sample_continuum_at_joining(h);
+  hand_over_earlier_models(h);
   build(
       [&]
       {
-        auto& p = model_.particles;
-        auto& b = model_.bonds;
-        const auto& op = old.particles;
-        std::vector<int> old_of(adaptive_->packing().size(), -1); // packing -> old particle
-        for (std::size_t i = 0; i < op.size(); ++i)
-          old_of[std::size_t(old_packing[i])] = int(i);
-        std::vector<std::int32_t> id_of_old(op.size(), -1); // old particle -> new id
-        for (std::size_t i = 0; i < p.size(); ++i)
-        {
-          const int o = old_of[std::size_t(packing_of_[i])];
-          if (o >= 0)
-          {
-            id_of_old[std::size_t(o)] = p.id[i];
-            p.position[i] = op.position[o];
-            p.velocity[i] = op.velocity[o];
-            p.angular_velocity[i] = op.angular_velocity[o];
-            p.orientation[i] = op.orientation[o];
-            continue;
-          }
-          const auto& t = taken.at(packing_of_[i]);
-          p.position[i] = p.reference_position[i] + t[0];
-          p.velocity[i] = t[1];
-          const double angle = t[2].norm();
-          p.orientation[i] =
-              angle > 0 ? dem::Quat(Eigen::AngleAxisd(angle, t[2] / angle)) : dem::Quat::Identity();
-          p.angular_velocity[i] = t[3];
-        }
-        // bonds by their particles' packing indices
-        std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> by_pair;
-        const auto& ob = old.bonds;
-        for (std::size_t k = 0; k < ob.size(); ++k)
-        {
-          const auto a = old_packing[ob.a[k]], c = old_packing[ob.b[k]];
-          by_pair[{std::min(a, c), std::max(a, c)}] = k;
-        }
-        new_bond.assign(ob.size(), -1);
-        for (std::size_t k = 0; k < b.size(); ++k)
-        {
-          const auto a = packing_of_[b.a[k]], c = packing_of_[b.b[k]];
-          const auto it = by_pair.find({std::min(a, c), std::max(a, c)});
-          if (it == by_pair.end())
-            continue;
-          const std::size_t o = it->second;
-          new_bond[o] = long(k);
-          b.state[k] = ob.state[o];
-          if (b.has_failure())
-          {
-            b.tensile_strength[k] = old_tensile[o];
-            b.shear_strength[k] = old_shear[o];
-            b.damage[k] = ob.damage[o];
-            b.kappa_max[k] = ob.kappa_max[o];
-            b.kappa_ultimate[k] = ob.kappa_ultimate[o];
-            b.dissipated[k] = ob.dissipated[o];
-            b.failure_mode[k] = ob.failure_mode[o];
-          }
-        }
-        std::fill(p.coordination.begin(), p.coordination.end(), 0);
-        for (std::size_t k = 0; k < b.size(); ++k)
-          if (dem::is_bonded(b.state[k]))
-            ++p.coordination[b.a[k]], ++p.coordination[b.b[k]];
-        // the crack log in the new numbering (ids are the particles' user ids: ParticleStore::id)
-        std::vector<int> old_index_of_id(op.size(), -1);
-        for (std::size_t i = 0; i < op.size(); ++i)
-          old_index_of_id[std::size_t(op.id[i])] = int(i);
-        for (auto& c : cracks)
-        {
-          if (new_bond[c.bond] < 0)
-            throw std::logic_error("adaptive region: a broken bond is missing after the growth");
-          c.bond = std::size_t(new_bond[c.bond]);
-          c.a = id_of_old[std::size_t(old_index_of_id[std::size_t(c.a)])];
-          c.b = id_of_old[std::size_t(old_index_of_id[std::size_t(c.b)])];
-        }
-        // a load or support must act on the same particles as before
-        for (std::size_t gi = 0; gi < model_.groups.size(); ++gi)
-        {
-          bool acted = false;
-          for (const auto& c : model_.constraints)
-            acted = acted || c.group == int(gi);
-          for (const auto& l : model_.loads)
-            acted = acted || l.group == int(gi);
-          if (acted && model_.groups[gi].members.size() != old.groups[gi].members.size())
-            throw std::runtime_error(
-                "Group " + model_.groups[gi].name + ": it holds a load or support and would gain " +
-                std::to_string(model_.groups[gi].members.size() - old.groups[gi].members.size()) +
-                " particles as the adaptive region grows; select it inside the particle box");
-        }
+        adopt_particle_state(h);
+        adopt_bond_state(h);
+        renumber_crack_log(h);
+        check_loaded_groups_kept(h.old);
       });
-  const NodalField U(node_u, q), V(node_v, q);
-  fe_->set_initial_state(U, V);
-  fe_->continue_from(*old_fe, V);
-  old_fe.reset();
-  old_handshake.reset();
-
-  // 4. the tie's gap at the new interface (as set_initial_state)
-  transfer_.gather(fe_->displacement(), slots_);
-  transfer_.interpolate(slots_, points_);
+  continue_continuum(h);
+  set_tie_gap(); // 4. at the new interface
   if (root_)
-  {
-    for (std::size_t k = 0; k < transfer_.n_points(); ++k)
-    {
-      const int i = interface_[k];
-      const Vec3 up = model_.particles.position[i] - model_.particles.reference_position[i];
-      for (int c = 0; c < 3; ++c)
-        gap_[3 * k + c] = points_[3 * k + c] - up[c];
-    }
-    solver_->continue_run(time_, std::move(cracks));
-  }
+    solver_->continue_run(time_, std::move(h.cracks));
+
   event.energy_after = stored_energy_now(nullptr);
   event.region_cells = adaptive_->n_region_cells();
   event.cells_added = event.region_cells - cells_before;
@@ -529,5 +372,209 @@ GrowthEvent CoupledProblem::grow_region(const std::vector<char>& cells)
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   growth_events_.push_back(event);
   return event;
+}
+
+// The region becomes its cells and @p cells (no switching back); returns the cells it had.
+std::vector<char> CoupledProblem::add_region_cells(const std::vector<char>& cells)
+{
+  const std::vector<char> old_cells = adaptive_->cells();
+  std::vector<char> grown = cells;
+  for (std::size_t c = 0; c < grown.size() && c < old_cells.size(); ++c)
+    grown[c] = grown[c] || old_cells[c];
+  adaptive_->set_cells(grown);
+  return old_cells;
+}
+
+// 2. the continuum at the centres that join: u, v and their rotations 1/2 curl (central
+// differences over 1e-3 r; one process: rank 0 holds the points).
+void CoupledProblem::sample_continuum_at_joining(GrowthHandover& h)
+{
+  std::vector<Vec3> fresh;
+  for (const Vec3& X : adaptive_->packing())
+    if (adaptive_->in_region(X) && !adaptive_->in_cells(h.old_cells, X))
+      fresh.push_back(X);
+  const double delta = 1e-3 * dem_case_.particles.radius;
+  std::vector<Vec3> points;
+  for (const Vec3& X : fresh)
+  {
+    points.push_back(X);
+    for (int d = 0; d < 3; ++d)
+      for (const double s : {-1.0, 1.0})
+        points.push_back(X + s * delta * Vec3::Unit(d));
+  }
+  PointTransfer at;
+  at.reinit(*fe_, points, "Coupling/Adaptive region");
+  std::vector<double> slots, u, v;
+  at.gather(fe_->displacement(), slots);
+  at.interpolate(slots, u);
+  at.gather(fe_->velocity(), slots);
+  at.interpolate(slots, v);
+  auto value = [](const std::vector<double>& f, std::size_t p)
+  { return Vec3(f[3 * p], f[3 * p + 1], f[3 * p + 2]); };
+  for (std::size_t n = 0; n < fresh.size(); ++n)
+  {
+    const std::size_t p0 = 7 * n;
+    Eigen::Matrix3d gu, gv;
+    for (int d = 0; d < 3; ++d)
+    {
+      gu.col(d) = (value(u, p0 + 2 + 2 * d) - value(u, p0 + 1 + 2 * d)) / (2 * delta);
+      gv.col(d) = (value(v, p0 + 2 + 2 * d) - value(v, p0 + 1 + 2 * d)) / (2 * delta);
+    }
+    h.joining[adaptive_->packing_index(fresh[n])] = {
+        {value(u, p0), value(v, p0), half_curl(gu), half_curl(gv)}};
+  }
+}
+
+// 1./3. the earlier models' state kept by packing index (nodes by position), their works
+// carried; the region's new volume applied for the build.
+void CoupledProblem::hand_over_earlier_models(GrowthHandover& h)
+{
+  h.key_quantum = 1e-6 * 2 * dem_case_.particles.radius;
+  nodal_values(*fe_, h.key_quantum, h.node_u, h.node_v);
+  h.old = std::move(model_);
+  h.old_packing = packing_of_;
+  if (root_)
+  {
+    const auto& e = solver_->energy();
+    carried_.dem_damping += e.damping;
+    carried_.dem_external += e.external;
+    carried_.dem_other += e.fracture + e.friction + e.contact_damping;
+    h.cracks = solver_->cracks();
+    auto& b = h.old.bonds;
+    h.old_tensile = b.tensile_strength;
+    h.old_shear = b.shear_strength;
+    for (std::size_t n = 0; n < blending_.band_bonds.size() && n < band_tensile_.size(); ++n)
+    {
+      h.old_tensile[blending_.band_bonds[n]] = band_tensile_[n];
+      h.old_shear[blending_.band_bonds[n]] = band_shear_[n];
+    }
+  }
+  {
+    const auto& f = fe_->energies();
+    carried_.fe_damping += f.damping;
+    carried_.fe_boundary_work += f.boundary_work;
+    carried_.multiplier_work_fe += f.outside_work;
+  }
+  solver_.reset(); // it held the old model's stores
+  h.old_fe = std::move(fe_);
+  h.old_handshake = std::move(handshake_);
+  apply_region();
+}
+
+// The particles that were there keep their state; those that join take the continuum's.
+void CoupledProblem::adopt_particle_state(GrowthHandover& h)
+{
+  auto& p = model_.particles;
+  const auto& op = h.old.particles;
+  std::vector<int> old_of(adaptive_->packing().size(), -1); // packing -> old particle
+  for (std::size_t i = 0; i < op.size(); ++i)
+    old_of[std::size_t(h.old_packing[i])] = int(i);
+  h.id_of_old.assign(op.size(), -1);
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const int o = old_of[std::size_t(packing_of_[i])];
+    if (o >= 0)
+    {
+      h.id_of_old[std::size_t(o)] = p.id[i];
+      p.position[i] = op.position[o];
+      p.velocity[i] = op.velocity[o];
+      p.angular_velocity[i] = op.angular_velocity[o];
+      p.orientation[i] = op.orientation[o];
+      continue;
+    }
+    const auto& t = h.joining.at(packing_of_[i]);
+    p.position[i] = p.reference_position[i] + t[0];
+    p.velocity[i] = t[1];
+    const double angle = t[2].norm();
+    p.orientation[i] =
+        angle > 0 ? dem::Quat(Eigen::AngleAxisd(angle, t[2] / angle)) : dem::Quat::Identity();
+    p.angular_velocity[i] = t[3];
+  }
+}
+
+// The bonds that were there (found by their particles' packing indices) keep their state,
+// damage and strengths; the coordination numbers anew.
+void CoupledProblem::adopt_bond_state(GrowthHandover& h)
+{
+  auto& p = model_.particles;
+  auto& b = model_.bonds;
+  std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> by_pair;
+  const auto& ob = h.old.bonds;
+  for (std::size_t k = 0; k < ob.size(); ++k)
+  {
+    const auto a = h.old_packing[ob.a[k]], c = h.old_packing[ob.b[k]];
+    by_pair[{std::min(a, c), std::max(a, c)}] = k;
+  }
+  h.new_bond.assign(ob.size(), -1);
+  for (std::size_t k = 0; k < b.size(); ++k)
+  {
+    const auto a = packing_of_[b.a[k]], c = packing_of_[b.b[k]];
+    const auto it = by_pair.find({std::min(a, c), std::max(a, c)});
+    if (it == by_pair.end())
+      continue;
+    const std::size_t o = it->second;
+    h.new_bond[o] = long(k);
+    b.state[k] = ob.state[o];
+    if (b.has_failure())
+    {
+      b.tensile_strength[k] = h.old_tensile[o];
+      b.shear_strength[k] = h.old_shear[o];
+      b.damage[k] = ob.damage[o];
+      b.kappa_max[k] = ob.kappa_max[o];
+      b.kappa_ultimate[k] = ob.kappa_ultimate[o];
+      b.dissipated[k] = ob.dissipated[o];
+      b.failure_mode[k] = ob.failure_mode[o];
+    }
+  }
+  std::fill(p.coordination.begin(), p.coordination.end(), 0);
+  for (std::size_t k = 0; k < b.size(); ++k)
+    if (dem::is_bonded(b.state[k]))
+      ++p.coordination[b.a[k]], ++p.coordination[b.b[k]];
+}
+
+// The crack log in the new numbering (ids are the particles' user ids: ParticleStore::id).
+void CoupledProblem::renumber_crack_log(GrowthHandover& h)
+{
+  const auto& op = h.old.particles;
+  std::vector<int> old_index_of_id(op.size(), -1);
+  for (std::size_t i = 0; i < op.size(); ++i)
+    old_index_of_id[std::size_t(op.id[i])] = int(i);
+  for (auto& c : h.cracks)
+  {
+    if (h.new_bond[c.bond] < 0)
+      throw std::logic_error("adaptive region: a broken bond is missing after the growth");
+    c.bond = std::size_t(h.new_bond[c.bond]);
+    c.a = h.id_of_old[std::size_t(old_index_of_id[std::size_t(c.a)])];
+    c.b = h.id_of_old[std::size_t(old_index_of_id[std::size_t(c.b)])];
+  }
+}
+
+// A load or support must act on the same particles as before.
+void CoupledProblem::check_loaded_groups_kept(const dem::Model& old) const
+{
+  for (std::size_t gi = 0; gi < model_.groups.size(); ++gi)
+  {
+    bool acted = false;
+    for (const auto& c : model_.constraints)
+      acted = acted || c.group == int(gi);
+    for (const auto& l : model_.loads)
+      acted = acted || l.group == int(gi);
+    if (acted && model_.groups[gi].members.size() != old.groups[gi].members.size())
+      throw std::runtime_error(
+          "Group " + model_.groups[gi].name + ": it holds a load or support and would gain " +
+          std::to_string(model_.groups[gi].members.size() - old.groups[gi].members.size()) +
+          " particles as the adaptive region grows; select it inside the particle box");
+  }
+}
+
+// 3. the new continuum takes the earlier one's nodal displacements and velocities (every node
+// of the new mesh was one of the old: the region only grows) and its run's state.
+void CoupledProblem::continue_continuum(GrowthHandover& h)
+{
+  const NodalField U(h.node_u, h.key_quantum), V(h.node_v, h.key_quantum);
+  fe_->set_initial_state(U, V);
+  fe_->continue_from(*h.old_fe, V);
+  h.old_fe.reset();
+  h.old_handshake.reset();
 }
 } // namespace dembridge::coupling

@@ -14,41 +14,50 @@ namespace dembridge::coupling
 {
 using namespace dealii;
 
-void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
-                           const std::string& where)
+namespace
 {
-  comm_ = fe.communicator();
-  parallel_ = Utilities::MPI::n_mpi_processes(comm_) > 1;
-  const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
-  if (rank != 0 && !points.empty())
-    throw std::runtime_error(where + ": interface points must be given on rank 0");
-  n_points_ = Utilities::MPI::broadcast(comm_, points.size(), 0);
+using Locator = Utilities::MPI::RemotePointEvaluation<3>;
 
-  std::vector<Point<3>> at;
-  for (const auto& x : points)
-    at.emplace_back(x[0], x[1], x[2]);
-  Utilities::MPI::RemotePointEvaluation<3> locator(1e-6, /*enforce_unique_mapping=*/true);
-  locator.reinit(at, fe.get_triangulation(), fe.get_mapping());
-  // The first point outside the mesh (rank 0 holds the points).
+/// Throws "<where>: the interface point (...) lies outside the FE mesh" for the first of @p at
+/// (rank 0's points) that @p locator did not find (collective).
+void require_points_found(const Locator& locator, const std::vector<Point<3>>& at, MPI_Comm comm,
+                          const std::string& where)
+{
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
   long missing = -1;
   if (rank == 0)
     for (std::size_t p = 0; p < at.size() && missing < 0; ++p)
       if (!locator.point_found(p))
         missing = long(p);
-  missing = Utilities::MPI::broadcast(comm_, missing, 0);
+  missing = Utilities::MPI::broadcast(comm, missing, 0);
   if (missing >= 0)
   {
-    const auto x = Utilities::MPI::broadcast(comm_, rank == 0 ? at[missing] : Point<3>(), 0);
+    const auto x = Utilities::MPI::broadcast(comm, rank == 0 ? at[missing] : Point<3>(), 0);
     std::ostringstream s;
     s << where << ": the interface point (" << x[0] << ", " << x[1] << ", " << x[2]
       << ") lies outside the FE mesh";
     throw std::runtime_error(s.str());
   }
+}
 
+/// This rank's rows of G: for each point the (slot, N_I(xi_p)) of the nodes its cell gives a
+/// non-zero shape value, the slots numbered as first met, with their x, y, z DoFs and
+/// positions.
+struct ShapeRows
+{
+  std::vector<std::vector<std::pair<unsigned int, double>>> rows; ///< one per point (all ranks')
+  std::vector<types::global_dof_index> slot_dofs;                 ///< 3 per slot
+  std::vector<Point<3>> slot_points;
+  std::size_t n_slots = 0;
+};
+
+ShapeRows shape_rows(const fem::ExplicitDynamics& fe, Locator& locator, std::size_t n_given,
+                     std::size_t n_points)
+{
   // Which point each of this rank's (cell, reference point) pairs is: send the point indices
   // along the same route the values take.
-  std::vector<double> index(at.size());
-  for (std::size_t p = 0; p < at.size(); ++p)
+  std::vector<double> index(n_given);
+  for (std::size_t p = 0; p < n_given; ++p)
     index[p] = double(p);
   std::vector<double> buffer;
   const auto& dof_handler = fe.get_dof_handler();
@@ -56,14 +65,12 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
   const auto& base = fe_system.base_element(0);
   const unsigned int n_base = base.n_dofs_per_cell();
   std::map<types::global_dof_index, unsigned int> slot_of; // x-DoF of a node -> slot
-  slot_point_.clear();                                     // a reinit starts afresh
-  std::vector<std::vector<std::pair<unsigned int, double>>> rows(n_points_);
-  std::vector<types::global_dof_index> slot_dofs; // 3 per slot
+  ShapeRows r;
+  r.rows.resize(n_points);
   std::vector<types::global_dof_index> cell_dofs(fe_system.n_dofs_per_cell());
   locator.process_and_evaluate<double>(
       index, buffer,
-      [&](const ArrayView<const double>& values,
-          const Utilities::MPI::RemotePointEvaluation<3>::CellData& cell_data)
+      [&](const ArrayView<const double>& values, const Locator::CellData& cell_data)
       {
         for (unsigned int c = 0; c < cell_data.cells.size(); ++c)
         {
@@ -86,16 +93,48 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
               if (fresh)
               {
                 for (unsigned int d = 0; d < 3; ++d)
-                  slot_dofs.push_back(cell_dofs[fe_system.component_to_system_index(d, b)]);
-                slot_point_.push_back(fe.get_mapping().transform_unit_to_real_cell(
+                  r.slot_dofs.push_back(cell_dofs[fe_system.component_to_system_index(d, b)]);
+                r.slot_points.push_back(fe.get_mapping().transform_unit_to_real_cell(
                     cell, base.get_unit_support_points()[b]));
               }
-              rows[p].emplace_back(it->second, N);
+              r.rows[p].emplace_back(it->second, N);
             }
           }
         }
       });
+  r.n_slots = slot_of.size();
+  return r;
+}
+} // namespace
 
+void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
+                           const std::string& where)
+{
+  comm_ = fe.communicator();
+  parallel_ = Utilities::MPI::n_mpi_processes(comm_) > 1;
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
+  if (rank != 0 && !points.empty())
+    throw std::runtime_error(where + ": interface points must be given on rank 0");
+  n_points_ = Utilities::MPI::broadcast(comm_, points.size(), 0);
+
+  std::vector<Point<3>> at;
+  for (const auto& x : points)
+    at.emplace_back(x[0], x[1], x[2]);
+  Locator locator(1e-6, /*enforce_unique_mapping=*/true);
+  locator.reinit(at, fe.get_triangulation(), fe.get_mapping());
+  require_points_found(locator, at, comm_, where);
+
+  ShapeRows r = shape_rows(fe, locator, at.size(), n_points_);
+  slot_point_ = std::move(r.slot_points); // a reinit starts afresh
+  store_rows(r.rows, r.n_slots);
+  index_slot_dofs(fe, r.slot_dofs, where);
+}
+
+// The rows as compressed rows (interpolation) and by slot (G^T in compressed columns, points
+// ascending within each slot: spreading).
+void PointTransfer::store_rows(
+    const std::vector<std::vector<std::pair<unsigned int, double>>>& rows, std::size_t n_slots)
+{
   row_ptr_.assign(1, 0);
   row_slot_.clear();
   row_value_.clear();
@@ -105,11 +144,10 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
       row_slot_.push_back(slot), row_value_.push_back(N);
     row_ptr_.push_back(unsigned(row_slot_.size()));
   }
-  // The same rows by slot (G^T in compressed columns), points ascending within each slot.
-  col_ptr_.assign(slot_of.size() + 1, 0);
+  col_ptr_.assign(n_slots + 1, 0);
   for (const unsigned int slot : row_slot_)
     ++col_ptr_[slot + 1];
-  for (std::size_t k = 0; k < slot_of.size(); ++k)
+  for (std::size_t k = 0; k < n_slots; ++k)
     col_ptr_[k + 1] += col_ptr_[k];
   col_point_.resize(row_slot_.size());
   col_value_.resize(row_slot_.size());
@@ -121,8 +159,13 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
       col_point_[at] = unsigned(p);
       col_value_[at] = row_value_[k];
     }
+}
 
-  // Local-form positions of the slot DoFs.
+// Local-form positions of the slot DoFs.
+void PointTransfer::index_slot_dofs(const fem::ExplicitDynamics& fe,
+                                    const std::vector<dealii::types::global_dof_index>& slot_dofs,
+                                    const std::string& where)
+{
   ghosted_.reinit(fe.owned_dofs(), fe.relevant_dofs(), comm_);
   const IndexSet& owned = fe.owned_dofs();
   const auto first = owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;

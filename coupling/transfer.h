@@ -15,6 +15,7 @@
 #include "dem/core/types.h"
 #include "fem/explicit_dynamics.h"
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dembridge::coupling
@@ -54,6 +55,14 @@ public:
   bool parallel() const { return parallel_; }
 
 private:
+  /// The steps of reinit (transfer.cc): the rows (slot, N) per point stored by row and by slot;
+  /// each slot DoF's place in a ghosted vector's local form.
+  void store_rows(const std::vector<std::vector<std::pair<unsigned int, double>>>& rows,
+                  std::size_t n_slots);
+  void index_slot_dofs(const fem::ExplicitDynamics& fe,
+                       const std::vector<dealii::types::global_dof_index>& slot_dofs,
+                       const std::string& where);
+
   MPI_Comm comm_ = MPI_COMM_SELF;
   bool parallel_ = false;
   std::size_t n_points_ = 0;
