@@ -14,7 +14,10 @@ namespace fs = std::filesystem;
 
 namespace dembridge::python
 {
-std::string one_line_message(const std::exception& e) { return app::one_line(e.what()); }
+std::string one_line_message(const std::exception& e)
+{
+  return app::one_line(e.what());
+}
 
 void register_case_error(py::module_& m)
 {
@@ -111,11 +114,10 @@ public:
       d[py::str(config_.measure.deflection_name)] = *r.deflection;
     if (r.natural_frequency)
       d["natural_frequency"] = *r.natural_frequency;
-    d["energy"] = py::dict(py::arg("kinetic") = r.energy.kinetic,
-                           py::arg("strain") = r.energy.strain,
-                           py::arg("damping") = r.energy.damping,
-                           py::arg("external_work") = r.energy.external,
-                           py::arg("fracture") = r.energy.fracture);
+    d["energy"] = py::dict(
+        py::arg("kinetic") = r.energy.kinetic, py::arg("strain") = r.energy.strain,
+        py::arg("damping") = r.energy.damping, py::arg("external_work") = r.energy.external,
+        py::arg("fracture") = r.energy.fracture);
     return d;
   }
 
@@ -125,8 +127,7 @@ public:
   double time_step() const { return model_.time_step; }
 
 private:
-  template <typename Work>
-  void with_case_name(Work&& work)
+  template <typename Work> void with_case_name(Work&& work)
   {
     try
     {
@@ -171,13 +172,15 @@ py::array vec3_view(const std::vector<dem::Vec3>& v, const py::object& owner)
   return view(v.empty() ? nullptr : v.front().data(), v.size(), 3, owner);
 }
 
-template <typename T>
-py::array scalar_view(const std::vector<T>& v, const py::object& owner)
+template <typename T> py::array scalar_view(const std::vector<T>& v, const py::object& owner)
 {
   return view(v.data(), v.size(), 1, owner);
 }
 
-const dem::Model& of(const py::object& self) { return self.cast<const Model&>().model(); }
+const dem::Model& of(const py::object& self)
+{
+  return self.cast<const Model&>().model();
+}
 
 void bind_particle_views(py::class_<Model>& c)
 {
@@ -276,8 +279,9 @@ void bind_bond_views(py::class_<Model>& c)
 
 void bind_model(py::module_& m)
 {
-  py::class_<Model> c(m, "Model", "A DEM case built as `dembridge run` builds it, stepped "
-                                  "from Python; its state as NumPy arrays");
+  py::class_<Model> c(m, "Model",
+                      "A DEM case built as `dembridge run` builds it, stepped "
+                      "from Python; its state as NumPy arrays");
   c.def(py::init<const std::string&, const std::vector<std::string>&>(), py::arg("case_file"),
         py::arg("overrides"))
       .def("step", &Model::step, py::arg("n") = 1, "Advances n explicit time steps")

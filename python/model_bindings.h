@@ -21,16 +21,14 @@ public:
 void register_case_error(pybind11::module_& m);
 
 /// Runs @p work; any error it throws is rethrown as CaseError with the CLI's one-line message.
-template <typename Work>
-auto rethrow_as_case_error(Work&& work) -> decltype(work());
+template <typename Work> auto rethrow_as_case_error(Work&& work) -> decltype(work());
 
 /// Declares dembridge._dembridge.Model.
 void bind_model(pybind11::module_& m);
 
 std::string one_line_message(const std::exception& e);
 
-template <typename Work>
-auto rethrow_as_case_error(Work&& work) -> decltype(work())
+template <typename Work> auto rethrow_as_case_error(Work&& work) -> decltype(work())
 {
   try
   {

@@ -106,11 +106,11 @@ void declare_microstructure_parameters(ParameterHandler& prm)
   }
 }
 
-dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
-                                                          const dem::BondMaterial& material,
-                                                          const dem::DamageConfig& damage)
+namespace
 {
-  dem::MicrostructureConfig c;
+/// The Microstructure section itself: the columns and the weak planes.
+void parse_grains_and_planes(ParameterHandler& prm, dem::MicrostructureConfig& c)
+{
   prm.enter_subsection("Microstructure");
   auto& g = c.grains;
   g.enabled = prm.get("grains") == "columnar";
@@ -133,6 +133,16 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
                           "offsets' gives no plane (set at least one offset)");
   prm.leave_subsection();
   g.validate();
+}
+} // namespace
+
+dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
+                                                          const dem::BondMaterial& material,
+                                                          const dem::DamageConfig& damage)
+{
+  dem::MicrostructureConfig c;
+  parse_grains_and_planes(prm, c);
+  const auto& g = c.grains;
 
   const bool has_class[] = {g.enabled, c.weak_planes.has_value()};
   const char* const needs[] = {"Microstructure/grains = columnar", "Microstructure/weak plane "
