@@ -126,10 +126,13 @@ class Errors(unittest.TestCase):
     def test_bad_value_names_the_key(self):
         import dembridge
         case = os.path.join(ARGS.examples, "cantilever.prm")
+        done = cli_run(case, fresh("bad_value_cli"), "Bonds/model=spaghetti")
+        self.assertEqual(done.returncode, 1)
+        cli_line = done.stderr.strip().splitlines()[-1].removeprefix("dembridge: error: ")
         with self.assertRaises(dembridge.CaseError) as raised:
             dembridge.Model(case, set={"Bonds/model": "spaghetti"})
         self.assertIn("Bonds/model", str(raised.exception))
-        self.assertTrue(str(raised.exception).startswith("cantilever.prm"))
+        self.assertEqual(str(raised.exception), cli_line)
 
     def test_dict_case(self):
         import dembridge
