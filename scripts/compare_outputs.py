@@ -21,6 +21,7 @@ Build products (CMake files, executables, logs of the tools) are skipped. Prints
 difference and a count; exit code 1 when anything differs.
 """
 import argparse
+import fnmatch
 import json
 import math
 import os
@@ -136,6 +137,8 @@ def output_files(root):
                 continue
             if os.access(path, os.X_OK) and ext == "":
                 continue  # a test executable
+            if os.path.islink(path) or not os.path.isfile(path):
+                continue  # e.g. the write-error tests' links to /dev/full
             files.add(os.path.relpath(path, root))
     return files
 
@@ -145,8 +148,16 @@ def main():
     parser.add_argument("before")
     parser.add_argument("after")
     parser.add_argument("--report", help="write the differences as JSON here")
+    parser.add_argument("--exclude", action="append", default=[], metavar="GLOB",
+                        help="leave out the files whose path (relative to the folders) matches, "
+                             "e.g. 'app/out/checkpoint_corrupt_*' (damaged on purpose)")
     args = parser.parse_args()
-    before, after = output_files(args.before), output_files(args.after)
+
+    def kept(files):
+        return {f for f in files
+                if not any(fnmatch.fnmatch(f, g) or fnmatch.fnmatch(f, g + "/*")
+                           for g in args.exclude)}
+    before, after = kept(output_files(args.before)), kept(output_files(args.after))
     differences = []
     for rel in sorted(before ^ after):
         differences.append(f"{rel}: only {'before' if rel in before else 'after'}")
