@@ -10,6 +10,7 @@
 #include "dem/measurements/crack_orientation.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
+#include "face_group.h"
 #include <cstdio>
 #include <gtest/gtest.h>
 
@@ -19,14 +20,7 @@ namespace
 {
 const Vec3 box(0.06, 0.06, 0.04);
 
-GroupConfig face_group(const std::string& name, int axis, bool upper, std::uint8_t fixed)
-{
-  GroupConfig g{name, {}, fixed, 0, Vec3::Zero()};
-  g.selection.kind = GroupSelection::Kind::face;
-  g.selection.face_axis = axis;
-  g.selection.face_upper = upper;
-  return g;
-}
+using dembridge::test::face_group;
 
 struct Outcome
 {

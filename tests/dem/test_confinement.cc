@@ -13,6 +13,7 @@
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/static_solver.h"
+#include "face_group.h"
 #include <gtest/gtest.h>
 #include <numbers>
 #include <random>
@@ -24,14 +25,7 @@ namespace
 const Vec3 box(0.06, 0.05, 0.04);
 constexpr double shortening = 2e-6; // m, the x+ face's push
 
-GroupConfig face_group(const std::string& name, int axis, bool upper, std::uint8_t fixed)
-{
-  GroupConfig g{name, {}, fixed, 0, Vec3::Zero()};
-  g.selection.kind = GroupSelection::Kind::face;
-  g.selection.face_axis = axis;
-  g.selection.face_upper = upper;
-  return g;
-}
+using dembridge::test::face_group;
 
 /// HCP block (r = 5 mm, parallel bonds): rollers on x-, y-, z- (symmetry planes), the x+ face
 /// pushed along -x by `push` (its lateral motion free), the y+ face under the pressure p_0 +

@@ -18,6 +18,7 @@
 #include "dem/solvers/bond_partition.h"
 #include "dem/solvers/explicit_solver.h"
 #include "dem/solvers/static_solver.h"
+#include "face_group.h"
 #include <algorithm>
 #include <gtest/gtest.h>
 #include <map>
@@ -30,14 +31,7 @@ namespace
 {
 using Kind = ParticleSource::Kind;
 
-GroupConfig face_group(const std::string& name, int axis, bool upper, std::uint8_t fixed)
-{
-  GroupConfig g{name, {}, fixed, 0, Vec3::Zero()};
-  g.selection.kind = GroupSelection::Kind::face;
-  g.selection.face_axis = axis;
-  g.selection.face_upper = upper;
-  return g;
-}
+using dembridge::test::face_group;
 
 /// Uniaxial compression along x of a small specimen (r = 2.5 mm): the x- face held in all six
 /// DOFs, the x+ face pushed 1 um along x (free across); static solver.

@@ -16,6 +16,7 @@
 // the plane's (a frictional smooth joint after failure, as PFC's, is not modelled).
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
+#include "face_group.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,14 +31,7 @@ namespace
 constexpr double deg = std::numbers::pi / 180;
 constexpr double radius = 1.5e-3; // m
 
-GroupConfig face_group(const std::string& name, int axis, bool upper, std::uint8_t fixed)
-{
-  GroupConfig g{name, {}, fixed, 0, Vec3::Zero()};
-  g.selection.kind = GroupSelection::Kind::face;
-  g.selection.face_axis = axis;
-  g.selection.face_upper = upper;
-  return g;
-}
+using dembridge::test::face_group;
 
 /// A random packing of @p box with strong bonds, brittle, Mohr-Coulomb, and one weak plane of
 /// normal @p normal through the box's centre (none for a zero normal), its bonds smooth joints
