@@ -79,6 +79,21 @@ function(dembridge_test name)
   endif()
 endfunction()
 
+# dembridge_expect_error_mpi(NAME NP OUTPUT REGEX ARGS...): dembridge_expect_error under
+# `mpirun -np NP` on two processors (tests/app/expect_error_mpi.sh: exit code 1, one line on rank
+# 0's stderr that matches REGEX, nothing on the other ranks', no folder); skipped without mpirun.
+function(dembridge_expect_error_mpi name np output regex)
+  cmake_parse_arguments(PARSE_ARGV 4 _dembridge "" "" "")
+  if(NOT MPIEXEC_EXECUTABLE)
+    dembridge_skipped_test(${name} "mpirun not found")
+    return()
+  endif()
+  add_test(NAME ${name}
+           COMMAND ${PROJECT_SOURCE_DIR}/tests/app/expect_error_mpi.sh ${MPIEXEC_EXECUTABLE} ${np}
+                   $<TARGET_FILE:dembridge> ${output} "${regex}" ${_dembridge_UNPARSED_ARGUMENTS})
+  set_tests_properties(${name} PROPERTIES PROCESSORS 2 ENVIRONMENT "${DEMBRIDGE_MPI_ENV}")
+endfunction()
+
 # dembridge_python_test(NAME SCRIPT ARGS... [dembridge_test keywords]): python3 runs SCRIPT (a
 # checker, a driver) with ARGS; where python3 is missing the test shows as skipped.
 function(dembridge_python_test name script)
@@ -93,6 +108,20 @@ endfunction()
 # what a command prints and the files it leaves (its usage lists the checks).
 function(dembridge_check_output name)
   dembridge_python_test(${name} ${PROJECT_SOURCE_DIR}/tests/app/check_output.py ${ARGN})
+endfunction()
+
+# dembridge_dealii_program(NAME SOURCES... [LINK libraries...]): a test program with deal.II's
+# flags as the libraries have them (without deal.II's -std=c++17, which would undo C++20, and
+# its -g); linked with the plain target_link_libraries signature, as deal_ii_setup_target is.
+function(dembridge_dealii_program name)
+  cmake_parse_arguments(T "" "" "LINK" ${ARGN})
+  add_executable(${name} ${T_UNPARSED_ARGUMENTS})
+  string(REPLACE "-std=c++17" "" DEAL_II_CXX_FLAGS "${DEAL_II_CXX_FLAGS}")
+  string(REGEX REPLACE "(^| )-g( |$)" " " DEAL_II_CXX_FLAGS "${DEAL_II_CXX_FLAGS}")
+  deal_ii_setup_target(${name})
+  if(T_LINK)
+    target_link_libraries(${name} ${T_LINK})
+  endif()
 endfunction()
 
 # dembridge_set_arguments(VAR overrides...): VAR = `--set o1 --set o2 ...`.

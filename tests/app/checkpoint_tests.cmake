@@ -2,15 +2,11 @@
 # The file: every field type round-trips bit for bit; other format versions, non-checkpoints,
 # other cases and missing fields are refused with the reason; the write is atomic.
 find_package(GTest REQUIRED)
-add_executable(test_checkpoint test_checkpoint.cc test_checkpoint_integrity.cc)
-string(REPLACE "-std=c++17" "" DEAL_II_CXX_FLAGS "${DEAL_II_CXX_FLAGS}")
-string(REGEX REPLACE "(^| )-g( |$)" " " DEAL_II_CXX_FLAGS "${DEAL_II_CXX_FLAGS}")
-deal_ii_setup_target(test_checkpoint)
-target_link_libraries(test_checkpoint dembridge_app GTest::gtest_main)
+dembridge_dealii_program(test_checkpoint test_checkpoint.cc test_checkpoint_integrity.cc
+                         LINK dembridge_app GTest::gtest_main)
 gtest_discover_tests(test_checkpoint DISCOVERY_TIMEOUT 60)
 # Where a checkpoint's datasets lie in the file (checkpoint_corrupt.py).
-add_executable(checkpoint_layout checkpoint_layout.cc)
-deal_ii_setup_target(checkpoint_layout)
+dembridge_dealii_program(checkpoint_layout checkpoint_layout.cc)
 # Kill -9 and resume (checkpoint_resume.py): killed after a checkpoint, between checkpoints, in
 # the middle of writing one, and by a real `kill -9` from outside; each resumed run ends with
 # every output file identical byte for byte to the uninterrupted run's (summary.json without
@@ -35,8 +31,7 @@ function(checkpoint_case name case)
   dembridge_set_arguments(sets ${T_SET})
   set(run $<TARGET_FILE:dembridge> ${case})
   app_python_test(checkpoint_resume_${name} checkpoint_resume.py ${run} ${OUT}/checkpoint_${name}
-                  ${T_FLAGS} ${sets})
-  set_tests_properties(checkpoint_resume_${name} PROPERTIES TIMEOUT 300)
+                  ${T_FLAGS} ${sets} TIMEOUT 300)
   if(T_CORRUPT)
     if(NOT T_CORRUPT_AS)
       set(T_CORRUPT_AS ${name})
@@ -46,8 +41,7 @@ function(checkpoint_case name case)
     endif()
     app_python_test(checkpoint_corrupt_${T_CORRUPT_AS} checkpoint_corrupt.py
       $<TARGET_FILE:dembridge> $<TARGET_FILE:checkpoint_layout> ${case}
-      ${OUT}/checkpoint_corrupt_${T_CORRUPT_AS} ${sets})
-    set_tests_properties(checkpoint_corrupt_${T_CORRUPT_AS} PROPERTIES TIMEOUT 300)
+      ${OUT}/checkpoint_corrupt_${T_CORRUPT_AS} ${sets} TIMEOUT 300)
   endif()
   if(NOT T_RANKS)
     return()
@@ -106,8 +100,8 @@ checkpoint_case(pressure ${EX}/columnar_biaxial.prm FLAGS --expect-cracks
 dembridge_set_arguments(_write_errors ${SPECIMEN} "Simulation/end time=0.001"
                         "Output/checkpoint interval=0.0001")
 app_python_test(write_errors_name_the_reason write_errors.py
-  $<TARGET_FILE:dembridge> ${EX}/compression_cubic.prm ${OUT}/write_errors 100 ${_write_errors})
-set_tests_properties(write_errors_name_the_reason PROPERTIES TIMEOUT 120)
+  $<TARGET_FILE:dembridge> ${EX}/compression_cubic.prm ${OUT}/write_errors 100 ${_write_errors}
+  TIMEOUT 120)
 # A coupled run: tests/coupling/coupled_pull.prm with its notch in the particle region (850
 # spheres, 8,712 FE DoFs), 0.8 ms (311 steps): the ligament's 50 bonds break from t = 0.49 ms;
 # checkpoints every 0.2 ms (78 steps). Killed after the first checkpoint, late (resumed from

@@ -5,13 +5,10 @@
 # more than one rank; FE and coupled runs work (coupled_compression_np2 in tests/coupling,
 # checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in checkpoint_tests.cmake).
 if(MPIEXEC_EXECUTABLE)
-  # mpi_error_test(name np regex subcommand args...)
+  # mpi_error_test(name np regex subcommand args...): mpi_npNP_name, a minute at most
   function(mpi_error_test name np regex)
-    add_test(NAME mpi_np${np}_${name}
-             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect_error_mpi.sh ${MPIEXEC_EXECUTABLE} ${np}
-                     $<TARGET_FILE:dembridge> ${OUT}/mpi_np${np}_${name} "${regex}" ${ARGN})
-    set_tests_properties(mpi_np${np}_${name} PROPERTIES TIMEOUT 60 PROCESSORS 2
-                         ENVIRONMENT "${DEMBRIDGE_MPI_ENV}")
+    dembridge_expect_error_mpi(mpi_np${np}_${name} ${np} ${OUT}/mpi_np${np}_${name} "${regex}" ${ARGN})
+    set_tests_properties(mpi_np${np}_${name} PROPERTIES TIMEOUT 60)
   endfunction()
   # explicit DEM runs split their particles over the ranks (tests/distributed: the cantilever,
   # compression_hcp and the notched beam on 2 and 3 ranks against one); what does not run there
@@ -32,8 +29,7 @@ if(MPIEXEC_EXECUTABLE)
     ${MPIEXEC_EXECUTABLE} ${EX}/cantilever.prm ${OUT}/mpi_np2_resume_dem --ranks 1:2
     --kill-after-step 3000 --kept .partial/history.csv.part
     --refusal "^dembridge: error: cantilever.prm: --resume: DEM runs on several MPI ranks do not checkpoint yet"
-    --set "Output/checkpoint interval=0.001")
-  set_tests_properties(mpi_np2_resume_dem PROPERTIES TIMEOUT 120 PROCESSORS 2 ENVIRONMENT "${DEMBRIDGE_MPI_ENV}")
+    --set "Output/checkpoint interval=0.001" TIMEOUT 120 PROCESSORS 2 MPI_ENV)
   mpi_error_test(verify 2 "^dembridge: error: verify runs on one MPI rank \\(the FE model is small\\), this job has 2"
                  verify ${EX}/compression_cubic.prm --youngs-modulus 3e9 --poisson-ratio 0.2)
   mpi_error_test(elasticity 2 "^dembridge: error: elasticity runs on one MPI rank"
@@ -53,20 +49,16 @@ if(MPIEXEC_EXECUTABLE)
   mpi_error_test(usage_error 2 "^dembridge: error: unknown subcommand 'frobnicate'" frobnicate)
   mpi_error_test(missing_case_file 2 "^dembridge: error: nope.prm: no such case file" run nope.prm)
   # print-parameters and --version print once, as on one rank
-  app_python_test(mpi_np2_print_parameters check_output.py --mpi ${MPIEXEC_EXECUTABLE} 2
+  dembridge_check_output(mpi_np2_print_parameters --mpi ${MPIEXEC_EXECUTABLE} 2
     --same-on-one-rank --stdout ${OUT}/mpi_np2_print_parameters.txt
-    -- $<TARGET_FILE:dembridge> print-parameters)
-  app_python_test(mpi_np2_version check_output.py --mpi ${MPIEXEC_EXECUTABLE} 2 --same-on-one-rank
-    -- $<TARGET_FILE:dembridge> --version)
-  set_tests_properties(mpi_np2_print_parameters mpi_np2_version PROPERTIES TIMEOUT 60 PROCESSORS 2
-                       ENVIRONMENT "${DEMBRIDGE_MPI_ENV}")
+    -- $<TARGET_FILE:dembridge> print-parameters TIMEOUT 60 PROCESSORS 2 MPI_ENV)
+  dembridge_check_output(mpi_np2_version --mpi ${MPIEXEC_EXECUTABLE} 2 --same-on-one-rank
+    -- $<TARGET_FILE:dembridge> --version TIMEOUT 60 PROCESSORS 2 MPI_ENV)
   # an error one rank meets alone ends the job within seconds (tests/app/mpi_lone_failure.sh)
   if(TARGET dembridge_fem)
-    add_test(NAME mpi_np2_lone_failure
+    dembridge_test(mpi_np2_lone_failure TIMEOUT 180 PROCESSORS 2 MPI_ENV
       COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/mpi_lone_failure.sh ${MPIEXEC_EXECUTABLE}
               $<TARGET_FILE:dembridge> ${EX}/fem_compression.prm ${OUT}/mpi_np2_lone_failure)
-    set_tests_properties(mpi_np2_lone_failure PROPERTIES TIMEOUT 180 PROCESSORS 2
-                         ENVIRONMENT "${DEMBRIDGE_MPI_ENV}")
   endif()
 else()
   foreach(_t mpi_np2_run_dem_static mpi_np2_print_parameters mpi_np2_lone_failure)
