@@ -1,4 +1,5 @@
-# Tests of how dembridge meets its input, shared by the test folders (tests/*/CMakeLists.txt).
+# The helpers the test folders share (tests/*/CMakeLists.txt): one call per test, its command
+# and the properties it needs. First the refusals and warnings of bad input.
 #
 # dembridge_expect_error(NAME OUTPUT REGEX ARGS...): runs `dembridge ARGS` into OUTPUT and passes
 # when it is refused as bad input must be (tests/app/expect_error.sh): one line on stderr that
