@@ -2,7 +2,6 @@
 #include "app/input/dem_parameters.h"
 #include "app/input/parameter_values.h"
 #include <algorithm>
-#include <limits>
 
 namespace dembridge::app
 {
@@ -105,10 +104,7 @@ void parse_contact_parameters(ParameterHandler& prm, dem::CaseConfig& c)
   prm.leave_subsection();
   k.validate();
 
-  prm.enter_subsection("Walls");
-  const auto names = split_names(prm.get("names"));
-  prm.leave_subsection();
-  for (const auto& name : names)
+  for (const auto& name : listed_names(prm, "Walls"))
   {
     dem::WallConfig w;
     w.name = name;
@@ -119,20 +115,7 @@ void parse_contact_parameters(ParameterHandler& prm, dem::CaseConfig& c)
     w.velocity = get_vec3(prm, "velocity");
     w.ramp_time = prm.get_double("ramp time");
     w.touch = prm.get_bool("touch");
-    const std::string end = prm.get("end time");
-    if (end == "inf" || end == "never")
-      w.end_time = std::numeric_limits<double>::infinity();
-    else
-    {
-      try
-      {
-        w.end_time = std::stod(end);
-      }
-      catch (const std::exception&)
-      {
-        throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
-      }
-    }
+    w.end_time = get_end_time(prm, where);
     prm.leave_subsection();
     w.validate();
     for (const auto& other : c.walls)

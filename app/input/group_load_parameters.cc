@@ -1,7 +1,5 @@
 #include "app/input/group_load_parameters.h"
-#include "app/input/dem_parameters.h"
 #include "app/input/parameter_values.h"
-#include <limits>
 
 namespace dembridge::app
 {
@@ -78,10 +76,7 @@ void declare_load_parameters(ParameterHandler& prm, const std::vector<std::strin
 std::vector<dem::GroupConfig> parse_group_sections(ParameterHandler& prm)
 {
   std::vector<dem::GroupConfig> groups;
-  prm.enter_subsection("Groups");
-  const auto group_names = split_names(prm.get("names"));
-  prm.leave_subsection();
-  for (const auto& name : group_names)
+  for (const auto& name : listed_names(prm, "Groups"))
   {
     dem::GroupConfig g;
     g.name = name;
@@ -116,10 +111,7 @@ std::vector<dem::GroupConfig> parse_group_sections(ParameterHandler& prm)
 std::vector<dem::LoadConfig> parse_load_sections(ParameterHandler& prm)
 {
   std::vector<dem::LoadConfig> loads;
-  prm.enter_subsection("Loads");
-  const auto load_names = split_names(prm.get("names"));
-  prm.leave_subsection();
-  for (const auto& name : load_names)
+  for (const auto& name : listed_names(prm, "Loads"))
   {
     dem::LoadConfig lc;
     const std::string where = "Load " + name;
@@ -146,20 +138,7 @@ std::vector<dem::LoadConfig> parse_load_sections(ParameterHandler& prm)
     for (const auto& comp : dealii::Utilities::split_string_list(prm.get("components"), ','))
       lc.load.components |= std::uint8_t(1u << (comp[0] - 'x'));
     lc.load.ramp_time = prm.get_double("ramp time");
-    const std::string end = prm.get("end time");
-    if (end == "inf" || end == "never")
-      lc.load.end_time = std::numeric_limits<double>::infinity();
-    else
-    {
-      try
-      {
-        lc.load.end_time = std::stod(end);
-      }
-      catch (const std::exception&)
-      {
-        throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
-      }
-    }
+    lc.load.end_time = get_end_time(prm, where);
     prm.leave_subsection();
     loads.push_back(lc);
   }

@@ -29,8 +29,7 @@ foreach(_pair IN LISTS _json_round_trip_reused)
   list(GET _pair 0 _example)
   list(GET _pair 1 _run)
   app_python_test(json_round_trip_${_example} json_round_trip.py $<TARGET_FILE:dembridge>
-    ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example} ${OUT}/${_run})
-  set_tests_properties(json_round_trip_${_example} PROPERTIES FIXTURES_REQUIRED ${_run})
+    ${EX}/${_example}.prm ${OUT}/json_round_trip_${_example} ${OUT}/${_run} AFTER ${_run})
 endforeach()
 foreach(_example IN LISTS _json_round_trip_run)
   app_python_test(json_round_trip_${_example} json_round_trip.py $<TARGET_FILE:dembridge>

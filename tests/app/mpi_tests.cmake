@@ -5,13 +5,10 @@
 # more than one rank; FE and coupled runs work (coupled_compression_np2 in tests/coupling,
 # checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in checkpoint_tests.cmake).
 if(MPIEXEC_EXECUTABLE)
-  # mpi_error_test(name np regex subcommand args...)
+  # mpi_error_test(name np regex subcommand args...): mpi_npNP_name, a minute at most
   function(mpi_error_test name np regex)
-    add_test(NAME mpi_np${np}_${name}
-             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect_error_mpi.sh ${MPIEXEC_EXECUTABLE} ${np}
-                     $<TARGET_FILE:dembridge> ${OUT}/mpi_np${np}_${name} "${regex}" ${ARGN})
-    set_tests_properties(mpi_np${np}_${name} PROPERTIES TIMEOUT 60 PROCESSORS 2
-                         ENVIRONMENT "${APP_MPI_ENV}")
+    dembridge_expect_error_mpi(mpi_np${np}_${name} ${np} ${OUT}/mpi_np${np}_${name} "${regex}" ${ARGN})
+    set_tests_properties(mpi_np${np}_${name} PROPERTIES TIMEOUT 60)
   endfunction()
   # explicit DEM runs split their particles over the ranks (tests/distributed: the cantilever,
   # compression_hcp and the notched beam on 2 and 3 ranks against one); what does not run there
@@ -28,10 +25,11 @@ if(MPIEXEC_EXECUTABLE)
                  run ${EX}/cantilever.prm --set "Output/checkpoint interval=0.01")
   # a DEM checkpoint written on one rank (the run killed after 3,000 steps), resumed on two:
   # refused in one line, exit code 1, the checkpoint and the staged files kept
-  set(_rd ${OUT}/mpi_np2_resume_dem)
-  add_test(NAME mpi_np2_resume_dem
-    COMMAND sh -c "rm -rf ${_rd}; DEMBRIDGE_TEST_KILL_AFTER_STEP=3000 $<TARGET_FILE:dembridge> run ${EX}/cantilever.prm --output-dir ${_rd} --set 'Output/checkpoint interval=0.001' >/dev/null 2>&1; test -s ${_rd}/checkpoint.h5 || exit 2; ${MPIEXEC_EXECUTABLE} -np 2 --oversubscribe $<TARGET_FILE:dembridge> run ${EX}/cantilever.prm --resume ${_rd} >/dev/null 2>${_rd}.err; code=$?; cat ${_rd}.err; [ $code -eq 1 ] && [ $(grep -c '^dembridge: error: cantilever.prm: --resume: DEM runs on several MPI ranks do not checkpoint yet' ${_rd}.err) -eq 1 ] && test -s ${_rd}/checkpoint.h5 && test -s ${_rd}/.partial/history.csv.part")
-  set_tests_properties(mpi_np2_resume_dem PROPERTIES TIMEOUT 120 PROCESSORS 2 ENVIRONMENT "${APP_MPI_ENV}")
+  app_python_test(mpi_np2_resume_dem checkpoint_ranks.py $<TARGET_FILE:dembridge>
+    ${MPIEXEC_EXECUTABLE} ${EX}/cantilever.prm ${OUT}/mpi_np2_resume_dem --ranks 1:2
+    --kill-after-step 3000 --kept .partial/history.csv.part
+    --refusal "^dembridge: error: cantilever.prm: --resume: DEM runs on several MPI ranks do not checkpoint yet"
+    --set "Output/checkpoint interval=0.001" TIMEOUT 120 PROCESSORS 2 MPI_ENV)
   mpi_error_test(verify 2 "^dembridge: error: verify runs on one MPI rank \\(the FE model is small\\), this job has 2"
                  verify ${EX}/compression_cubic.prm --youngs-modulus 3e9 --poisson-ratio 0.2)
   mpi_error_test(elasticity 2 "^dembridge: error: elasticity runs on one MPI rank"
@@ -51,22 +49,19 @@ if(MPIEXEC_EXECUTABLE)
   mpi_error_test(usage_error 2 "^dembridge: error: unknown subcommand 'frobnicate'" frobnicate)
   mpi_error_test(missing_case_file 2 "^dembridge: error: nope.prm: no such case file" run nope.prm)
   # print-parameters and --version print once, as on one rank
-  add_test(NAME mpi_np2_print_parameters
-    COMMAND sh -c "mkdir -p ${OUT} && ${MPIEXEC_EXECUTABLE} -np 2 --oversubscribe $<TARGET_FILE:dembridge> print-parameters >${OUT}/mpi_np2_print_parameters.txt && $<TARGET_FILE:dembridge> print-parameters >${OUT}/print_parameters.txt && wc -l ${OUT}/mpi_np2_print_parameters.txt ${OUT}/print_parameters.txt && cmp ${OUT}/mpi_np2_print_parameters.txt ${OUT}/print_parameters.txt")
-  add_test(NAME mpi_np2_version
-    COMMAND sh -c "v=$(${MPIEXEC_EXECUTABLE} -np 2 --oversubscribe $<TARGET_FILE:dembridge> --version) && echo \"$v\" && [ \"$v\" = \"$($<TARGET_FILE:dembridge> --version)\" ]")
-  set_tests_properties(mpi_np2_print_parameters mpi_np2_version PROPERTIES TIMEOUT 60 PROCESSORS 2
-                       ENVIRONMENT "${APP_MPI_ENV}")
+  dembridge_check_output(mpi_np2_print_parameters --mpi ${MPIEXEC_EXECUTABLE} 2
+    --same-on-one-rank --stdout ${OUT}/mpi_np2_print_parameters.txt
+    -- $<TARGET_FILE:dembridge> print-parameters TIMEOUT 60 PROCESSORS 2 MPI_ENV)
+  dembridge_check_output(mpi_np2_version --mpi ${MPIEXEC_EXECUTABLE} 2 --same-on-one-rank
+    -- $<TARGET_FILE:dembridge> --version TIMEOUT 60 PROCESSORS 2 MPI_ENV)
   # an error one rank meets alone ends the job within seconds (tests/app/mpi_lone_failure.sh)
   if(TARGET dembridge_fem)
-    add_test(NAME mpi_np2_lone_failure
+    dembridge_test(mpi_np2_lone_failure TIMEOUT 180 PROCESSORS 2 MPI_ENV
       COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/mpi_lone_failure.sh ${MPIEXEC_EXECUTABLE}
               $<TARGET_FILE:dembridge> ${EX}/fem_compression.prm ${OUT}/mpi_np2_lone_failure)
-    set_tests_properties(mpi_np2_lone_failure PROPERTIES TIMEOUT 180 PROCESSORS 2
-                         ENVIRONMENT "${APP_MPI_ENV}")
   endif()
 else()
   foreach(_t mpi_np2_run_dem_static mpi_np2_print_parameters mpi_np2_lone_failure)
-    skipped_test(${_t} "mpirun not found")
+    dembridge_skipped_test(${_t} "mpirun not found")
   endforeach()
 endif()
