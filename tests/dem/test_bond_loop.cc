@@ -100,6 +100,13 @@ struct Case
   int threads;
 };
 
+// GoogleTest would otherwise print the struct's bytes, padding included, into the test list.
+void PrintTo(const Case& c, std::ostream* os)
+{
+  *os << (c.kind == ParticleSource::Kind::hcp ? "hcp" : "random") << ", damping " << c.damping
+      << ", " << c.threads << " threads";
+}
+
 class BondLoop : public ::testing::TestWithParam<Case>
 {
 };
