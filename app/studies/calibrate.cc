@@ -1,0 +1,216 @@
+// dembridge calibrate: the elastic and strength halves in turn, and the output folder
+// (calibrate.h).
+#include "app/studies/calibrate.h"
+#include "app/input/calibration_parameters.h"
+#include "app/input/case_file.h"
+#include "app/input/dem_parameters.h"
+#include "app/studies/calibrate_elastic.h"
+#include "app/studies/calibrate_report.h"
+#include "app/studies/calibrate_strength.h"
+#include "app/studies/verify.h"
+#include "app/studies/verify_report.h"
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace dembridge::app
+{
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace calibrate_detail;
+
+namespace
+{
+/// Everything read from the targets file, checked before anything is written.
+struct Inputs
+{
+  std::string name;
+  fs::path case_dir;
+  dem::CaseConfig config;
+  CalibrationTargets targets;
+  std::string bond_model;
+  fs::path strength_case; ///< absolute; empty without a strength target
+  std::unique_ptr<ElasticProbe> probe;
+};
+
+Inputs read_inputs(const CalibrateOptions& o)
+{
+  Inputs in;
+  in.name = fs::path(o.targets_file).filename().string();
+  if (fs::path(o.targets_file).extension() != ".prm")
+    throw std::runtime_error(in.name + ": calibrate reads .prm cases (the calibrated case is "
+                                       "the file with its calibrated values appended)");
+  auto prm = read_case(o.targets_file, o.overrides);
+  if (prm->get("Mode") != "dem")
+    throw std::runtime_error(in.name + ": Mode: calibrate needs a DEM case (Mode = dem)");
+  in.case_dir = fs::absolute(o.targets_file).parent_path();
+  try
+  {
+    in.targets = read_calibration_targets(*prm);
+    in.bond_model = prm->get({"Bonds"}, "model");
+    if (!in.targets.strength_case.empty())
+    {
+      in.strength_case = (in.case_dir / in.targets.strength_case).lexically_normal();
+      if (!fs::is_regular_file(in.strength_case))
+        throw std::runtime_error("Calibration/strength case: " + in.targets.strength_case +
+                                 ": no such file");
+    }
+    WorkingDirectory cd(in.case_dir); // case-relative paths
+    in.config = parse_dem_case(*prm);
+    in.probe = std::make_unique<ElasticProbe>(in.config); // builds the packing
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(in.name + ": " + one_line(e.what()));
+  }
+  return in;
+}
+
+/// "Bonds/<key>=<value>" of the calibrated elastic parameters.
+std::vector<std::string> bond_overrides(const ElasticCalibration& c)
+{
+  return {"Bonds/" + c.ratio_key + "=" + verify_detail::num(c.ratio_parameter),
+          "Bonds/" + c.modulus_key + "=" + verify_detail::num(c.modulus_parameter)};
+}
+
+json targets_json(const CalibrationTargets& t)
+{
+  json j = {{"youngs_modulus", t.youngs_modulus},
+            {"poisson_ratio", t.poisson_ratio},
+            {"elastic_tolerance", t.elastic_tolerance},
+            {"max_static_solves", t.max_static_solves}};
+  if (t.tensile_strength > 0)
+  {
+    j["tensile_strength"] = t.tensile_strength;
+    j["strength_tolerance"] = t.strength_tolerance;
+    j["max_tension_runs"] = t.max_tension_runs;
+  }
+  return j;
+}
+
+fs::path output_folder(const CalibrateOptions& o)
+{
+  return o.output_dir.empty()
+             ? fs::path("output") / ("calibrate_" + fs::path(o.targets_file).stem().string())
+             : fs::path(o.output_dir);
+}
+} // namespace
+
+namespace
+{
+/// The strength half, when a tensile strength is a target and the elastic half was reached;
+/// records it in j and adds its calibrated strengths to j["calibrated"].
+std::optional<StrengthCalibration> calibrate_strengths(const Inputs& in,
+                                                       const ElasticCalibration& elastic,
+                                                       const CalibrateOptions& o,
+                                                       const fs::path& dir, json& j)
+{
+  if (!(in.targets.tensile_strength > 0))
+    return std::nullopt;
+  if (!elastic.reached)
+  {
+    j["strength"] = {{"reached", false},
+                     {"tension_runs", 0},
+                     {"failure", "not run: the elastic calibration was not reached"}};
+    return std::nullopt;
+  }
+  const fs::path scratch = dir / "tension_runs";
+  StrengthCalibration s = calibrate_strength(in.strength_case, bond_overrides(elastic),
+                                             in.bond_model, in.targets, scratch, o.progress);
+  fs::remove_all(scratch);
+  j["strength"] = strength_json(s, in.targets);
+  if (s.reached)
+    for (const std::string& o : s.overrides)
+      if (o.rfind("Damage/", 0) == 0)
+        j["calibrated"][o.substr(0, o.find('='))] = std::stod(o.substr(o.find('=') + 1));
+  return s;
+}
+
+/// calibrated.prm and calibrated_strength.prm; the names written.
+json write_cases(const CalibrateOptions& o, const Inputs& in, const ElasticCalibration& e,
+                 const std::optional<StrengthCalibration>& s, const fs::path& dir)
+{
+  json files = json::array();
+  write_text_atomically(dir, "calibrated.prm",
+                        overridden_case_text(o.targets_file, o.overrides, bond_overrides(e),
+                                             "dembridge calibrate: " + in.name +
+                                                 " with the calibrated bond parameters "
+                                                 "(calibration.json)"));
+  files.push_back("calibrated.prm");
+  if (s)
+  {
+    write_text_atomically(dir, "calibrated_strength.prm",
+                          overridden_case_text(in.strength_case, {}, s->overrides,
+                                               "dembridge calibrate: " +
+                                                   in.strength_case.filename().string() +
+                                                   " with the calibrated bond and strength "
+                                                   "parameters (calibration.json)"));
+    files.push_back("calibrated_strength.prm");
+  }
+  return files;
+}
+} // namespace
+
+CalibrationResult calibrate(const CalibrateOptions& o)
+{
+  const auto start = std::chrono::steady_clock::now();
+  Inputs in = read_inputs(o); // every input checked before anything is written
+  CalibrationResult r;
+  r.output_dir = output_folder(o);
+  fs::create_directories(r.output_dir);
+  // an earlier calibration's files must not pass for this one's
+  for (const char* f : {"calibration.json", "calibration.png", "calibrated.prm",
+                        "calibrated_strength.prm"})
+    fs::remove(r.output_dir / f);
+  json& j = r.report;
+  j["targets_file"] = in.name;
+  j["bond_model"] = in.bond_model;
+  j["targets"] = targets_json(in.targets);
+  j["n_particles"] = in.probe->model().particles.size();
+  j["n_bonds"] = in.probe->model().bonds.size();
+  const ElasticCalibration e =
+      calibrate_elastic(*in.probe, in.config.bonds.material, in.targets, o.progress);
+  j["elastic"] = elastic_json(e, in.targets);
+  j["calibrated"] = {{"Bonds/" + e.ratio_key, e.ratio_parameter},
+                     {"Bonds/" + e.modulus_key, e.modulus_parameter}};
+  const auto s = calibrate_strengths(in, e, o, r.output_dir, j);
+  r.failure = !e.reached ? e.failure : (s && !s->reached ? s->failure : "");
+  r.reached = r.failure.empty();
+  j["reached"] = r.reached;
+  if (!r.reached)
+    j["failure"] = r.failure;
+  j["files"] = r.reached ? write_cases(o, in, e, s, r.output_dir) : json::array();
+  j["wall_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  verify_detail::write_json_atomically(r.output_dir, "calibration.json", j);
+  if (o.plot)
+  {
+    j["plot"] = write_plot(r.output_dir);
+    verify_detail::write_json_atomically(r.output_dir, "calibration.json", j);
+  }
+  return r;
+}
+
+int run_calibrate(const CalibrateOptions& o)
+{
+  const CalibrationResult r = calibrate(o);
+  const json& j = r.report;
+  std::printf("calibrate: %s, %zu particles, %zu bonds (%s): %ld static solves%s\n",
+              j["targets_file"].get<std::string>().c_str(), j["n_particles"].get<std::size_t>(),
+              j["n_bonds"].get<std::size_t>(), j["bond_model"].get<std::string>().c_str(),
+              j["elastic"]["static_solves"].get<long>(),
+              j.contains("strength")
+                  ? (", " + std::to_string(j["strength"]["tension_runs"].get<long>()) +
+                     " tension runs")
+                        .c_str()
+                  : "");
+  for (const auto& [key, value] : j["calibrated"].items())
+    std::printf("  %-32s %.10g\n", key.c_str(), value.get<double>());
+  std::cout << "dembridge: wrote " << (r.output_dir / "calibration.json").string() << std::endl;
+  if (!r.reached)
+    throw std::runtime_error(j["targets_file"].get<std::string>() + ": " + r.failure);
+  return 0;
+}
+} // namespace dembridge::app
