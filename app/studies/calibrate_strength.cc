@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace dembridge::app
@@ -52,24 +54,15 @@ std::string set(const std::string& key, double value)
   return key + "=" + verify_detail::num(value);
 }
 
-/// One tension run at strength factor @p s; its peak stress.
-StrengthSample run_once(const fs::path& file, const std::vector<std::string>& bond_overrides,
-                        const BaseStrengths& base, double s, const fs::path& dir,
-                        std::vector<std::string>& overrides)
+/// Runs @p file with @p overrides into @p dir; its peak stress, checked to be past the peak
+/// when the run ended (a failure, not a load cut short).
+StrengthSample run_to_failure(const fs::path& file, const std::vector<std::string>& overrides,
+                              const fs::path& dir)
 {
   const auto start = std::chrono::steady_clock::now();
-  StrengthSample r;
-  r.factor = s;
-  r.tensile_strength = s * base.tensile;
-  r.shear_strength = s * base.shear;
-  r.cohesion = s * base.cohesion;
-  overrides = bond_overrides;
-  overrides.push_back(set("Damage/tensile strength", r.tensile_strength));
-  if (base.shear > 0)
-    overrides.push_back(set("Damage/shear strength", r.shear_strength));
-  if (base.cohesion > 0)
-    overrides.push_back(set("Damage/cohesion", r.cohesion));
-  auto prm = read_case(file.string(), overrides);
+  std::vector<std::string> run_overrides = overrides;
+  run_overrides.push_back("Output/write vtu=false"); // only the summary is read
+  auto prm = read_case(file.string(), run_overrides);
   fs::create_directories(dir);
   nlohmann::json summary;
   {
@@ -78,17 +71,41 @@ StrengthSample run_once(const fs::path& file, const std::vector<std::string>& bo
   }
   const std::string name = file.filename().string();
   if (!summary.contains("peak_stress") || !summary["peak_stress"].is_number())
-    throw std::runtime_error(name + ": Output/history interval: the run recorded no load history "
-                                    "to read a peak stress from");
+    throw std::runtime_error(name + ": Measurements: the run measured no peak stress (a tension "
+                                    "case needs Measurements/modulus groups and a load history, "
+                                    "a compression case platens)");
+  StrengthSample r;
   r.peak_stress = summary["peak_stress"].get<double>();
   r.strain_at_peak = summary.value("strain_at_peak", 0.0);
-  const double final_to_peak = summary.value("final_to_peak_load", 1.0);
-  if (!(final_to_peak < 0.9))
-    throw std::runtime_error(name + ": Loads: the specimen had not failed when the run ended (final "
-                                    "load " + std::to_string(final_to_peak) +
-                                    " of the peak at strength factor " + std::to_string(s) +
-                                    "); load it further");
+  // the end load (tension between end groups) or the platen stress, over the peak
+  double final_to_peak = summary.value("final_to_peak_load", 1.0);
+  if (!summary.contains("final_to_peak_load") && summary.contains("final_stress"))
+    final_to_peak = summary["final_stress"].get<double>() / r.peak_stress;
+  if (!(std::abs(final_to_peak) < 0.9))
+    throw std::runtime_error(name + ": Simulation/end time: the specimen had not failed when the "
+                                    "run ended (final load " +
+                             verify_detail::num(final_to_peak) +
+                             " of the peak); load it further");
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+/// One tension run at strength factor @p s; its peak stress.
+StrengthSample run_once(const fs::path& file, const std::vector<std::string>& bond_overrides,
+                        const BaseStrengths& base, double s, const fs::path& dir,
+                        std::vector<std::string>& overrides)
+{
+  overrides = bond_overrides;
+  overrides.push_back(set("Damage/tensile strength", s * base.tensile));
+  if (base.shear > 0)
+    overrides.push_back(set("Damage/shear strength", s * base.shear));
+  if (base.cohesion > 0)
+    overrides.push_back(set("Damage/cohesion", s * base.cohesion));
+  StrengthSample r = run_to_failure(file, overrides, dir);
+  r.factor = s;
+  r.tensile_strength = s * base.tensile;
+  r.shear_strength = s * base.shear;
+  r.cohesion = s * base.cohesion;
   return r;
 }
 
@@ -157,6 +174,46 @@ StrengthCalibration calibrate_strength(const fs::path& file,
       break;
     }
     s = next_factor(c.iterations, t.tensile_strength);
+  }
+  return c;
+}
+} // namespace dembridge::app
+
+namespace dembridge::app
+{
+CompressionResult measure_compression(const fs::path& file,
+                                      const std::vector<std::string>& calibrated_overrides,
+                                      double tensile_strength, const CalibrationTargets& t,
+                                      const std::string& bond_model, const fs::path& scratch)
+{
+  CompressionResult c;
+  c.case_file = file.string();
+  {
+    auto prm = read_case(file.string(), calibrated_overrides);
+    const std::string name = file.filename().string();
+    if (prm->get({"Simulation"}, "solver") != "explicit")
+      throw std::runtime_error(name + ": Simulation/solver: the compression case runs to "
+                                      "failure, which needs the explicit solver");
+    if (prm->get({"Bonds"}, "model") != bond_model)
+      throw std::runtime_error(name + ": Bonds/model: '" + prm->get({"Bonds"}, "model") +
+                               "', and the elastic case calibrates '" + bond_model + "' bonds");
+  }
+  const StrengthSample r = run_to_failure(file, calibrated_overrides, scratch / "compression");
+  fs::remove_all(scratch / "compression");
+  c.peak_stress = r.peak_stress;
+  c.seconds = r.seconds;
+  c.ratio = r.peak_stress / tensile_strength;
+  const double target = t.compressive_to_tensile_ratio;
+  c.reached = !(target > 0) || std::abs(c.ratio - target) <= t.strength_tolerance * target;
+  if (!c.reached)
+  {
+    std::ostringstream line;
+    line << "Calibration/target compressive to tensile ratio: " << target << " is "
+         << (target > c.ratio ? "beyond" : "below") << " what " << bond_model
+         << " bonds give on this case: sigma_c / sigma_t = " << c.ratio
+         << " at the calibrated strengths (scaling every strength together keeps this ratio; "
+            "Potyondy and Cundall (2004) report such low ratios for bonded-particle models)";
+    c.failure = line.str();
   }
   return c;
 }

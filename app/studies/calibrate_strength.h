@@ -47,4 +47,22 @@ StrengthCalibration calibrate_strength(const std::filesystem::path& strength_cas
                                        const std::string& bond_model,
                                        const CalibrationTargets& targets,
                                        const std::filesystem::path& scratch, bool progress = true);
+
+/// sigma_c / sigma_t: one compression run to failure at the calibrated strengths. Scaling every
+/// strength by one factor leaves the ratio unchanged, so it is measured and compared with the
+/// target, not iterated on.
+struct CompressionResult
+{
+  std::string case_file;
+  double peak_stress = 0; ///< sigma_c, Pa
+  double ratio = 0;       ///< sigma_c / sigma_t
+  double seconds = 0;
+  bool reached = true;  ///< no target, or the target within the strength tolerance
+  std::string failure; ///< the one line when the target is out of reach
+};
+CompressionResult measure_compression(const std::filesystem::path& compression_case,
+                                      const std::vector<std::string>& calibrated_overrides,
+                                      double tensile_strength, const CalibrationTargets& targets,
+                                      const std::string& bond_model,
+                                      const std::filesystem::path& scratch);
 } // namespace dembridge::app
