@@ -180,9 +180,9 @@ std::optional<StrengthCalibration> calibrate_strengths(const Inputs& in,
                                              in.bond_model, in.targets, scratch, o.progress);
   j["strength"] = strength_json(s, in.targets);
   if (s.reached)
-    for (const std::string& o : s.overrides)
-      if (o.rfind("Damage/", 0) == 0)
-        j["calibrated"][o.substr(0, o.find('='))] = std::stod(o.substr(o.find('=') + 1));
+    for (const std::string& set : s.overrides)
+      if (set.rfind("Damage/", 0) == 0)
+        j["calibrated"][set.substr(0, set.find('='))] = std::stod(set.substr(set.find('=') + 1));
   if (s.reached && !in.compression_case.empty())
   {
     const CompressionResult c =

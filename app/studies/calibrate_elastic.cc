@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,7 +36,7 @@ RatioParameter ratio_parameter_of(const dem::BondMaterial& material)
   RatioParameter r;
   r.material = material;
   if (material.model == dem::BondModel::parallel_bond)
-    r.key = "stiffness ratio", r.lower = 1, r.upper = 100;
+    r.key = "stiffness ratio", r.lower = 0.1, r.upper = 100;
   else
     r.key = "radius multiplier", r.lower = 0.05, r.upper = 1;
   return r;

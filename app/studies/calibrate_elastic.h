@@ -18,8 +18,8 @@
 // target while nu converges. Each iteration is one static solve of the case
 // (dem/solvers/static_solver.h) that measures both E and nu.
 //
-// The ratio parameter: parallel bonds, Bonds/stiffness ratio = kappa itself, within [1, 100]
-// (shear stiffness from k_n down to k_n / 100); beam bonds (Euler-Bernoulli, Timoshenko),
+// The ratio parameter: parallel bonds, Bonds/stiffness ratio = kappa itself, within [0.1, 100]
+// (shear stiffness from 10 k_n down to k_n / 100); beam bonds (Euler-Bernoulli, Timoshenko),
 // Bonds/radius multiplier lambda, within [0.05, 1], whose kappa for touching spheres (L = 2 R) is
 //   kappa = (4 / (3 lambda^2)) (1 + Phi),   Phi = 5 lambda^2 (1 + nu_b) / 3 (Timoshenko, else 0).
 // A target nu beyond the nu the packing gives at the ratio's limit is out of reach.
