@@ -72,8 +72,7 @@ CalibrationTargets read_calibration_targets(dealii::ParameterHandler& prm)
   t.strength_case = prm.get("strength case");
   t.compression_case = prm.get("compression case");
   t.elastic_tolerance = prm.get_double("tolerance");
-  for (const std::string& seed :
-       dealii::Utilities::split_string_list(prm.get("spread seeds"), ','))
+  for (const std::string& seed : dealii::Utilities::split_string_list(prm.get("spread seeds"), ','))
     t.spread_seeds.push_back(std::stol(seed));
   t.spread_box_size = prm.get("spread box size");
   t.strength_tolerance = prm.get_double("strength tolerance");

@@ -218,12 +218,12 @@ json write_cases(const CalibrateOptions& o, const Inputs& in, const ElasticCalib
   files.push_back("calibrated.prm");
   if (s)
   {
-    write_text_atomically(dir, "calibrated_strength.prm",
-                          overridden_case_text(in.strength_case, {}, s->overrides,
-                                               "dembridge calibrate: " +
-                                                   in.strength_case.filename().string() +
-                                                   " with the calibrated bond and strength "
-                                                   "parameters (calibration.json)"));
+    write_text_atomically(
+        dir, "calibrated_strength.prm",
+        overridden_case_text(in.strength_case, {}, s->overrides,
+                             "dembridge calibrate: " + in.strength_case.filename().string() +
+                                 " with the calibrated bond and strength "
+                                 "parameters (calibration.json)"));
     files.push_back("calibrated_strength.prm");
   }
   return files;
@@ -238,8 +238,8 @@ CalibrationResult calibrate(const CalibrateOptions& o)
   r.output_dir = output_folder(o);
   fs::create_directories(r.output_dir);
   // an earlier calibration's files must not pass for this one's
-  for (const char* f : {"calibration.json", "calibration.png", "calibrated.prm",
-                        "calibrated_strength.prm"})
+  for (const char* f :
+       {"calibration.json", "calibration.png", "calibrated.prm", "calibrated_strength.prm"})
     fs::remove(r.output_dir / f);
   json& j = r.report;
   j["targets_file"] = in.name;
@@ -250,8 +250,9 @@ CalibrationResult calibrate(const CalibrateOptions& o)
   const ElasticCalibration e =
       calibrate_elastic(*in.probe, in.config.bonds.material, in.targets, o.progress);
   j["elastic"] = elastic_json(e, in.targets);
-  j["calibrated"] = {{"Bonds/" + e.ratio_key, e.ratio_parameter},
-                     {"Bonds/" + e.modulus_key, e.modulus_parameter}};
+  // the values of the last solve are calibrated only when it reached the targets
+  j[e.reached ? "calibrated" : "last_solve_parameters"] = {
+      {"Bonds/" + e.ratio_key, e.ratio_parameter}, {"Bonds/" + e.modulus_key, e.modulus_parameter}};
   if (e.reached && (!in.targets.spread_seeds.empty() || !in.targets.spread_box_size.empty()))
     j["spread"] = spread_json(o, in, e);
   const auto s = calibrate_strengths(in, e, o, r.output_dir, j);
@@ -281,17 +282,18 @@ int run_calibrate(const CalibrateOptions& o)
 {
   const CalibrationResult r = calibrate(o);
   const json& j = r.report;
-  std::printf("calibrate: %s, %zu particles, %zu bonds (%s): %ld static solves%s\n",
-              j["targets_file"].get<std::string>().c_str(), j["n_particles"].get<std::size_t>(),
-              j["n_bonds"].get<std::size_t>(), j["bond_model"].get<std::string>().c_str(),
-              j["elastic"]["static_solves"].get<long>(),
-              j.contains("strength")
-                  ? (", " + std::to_string(j["strength"]["tension_runs"].get<long>()) +
-                     " tension runs")
-                        .c_str()
-                  : "");
-  for (const auto& [key, value] : j["calibrated"].items())
-    std::printf("  %-32s %.10g\n", key.c_str(), value.get<double>());
+  std::printf(
+      "calibrate: %s, %zu particles, %zu bonds (%s): %ld static solves%s\n",
+      j["targets_file"].get<std::string>().c_str(), j["n_particles"].get<std::size_t>(),
+      j["n_bonds"].get<std::size_t>(), j["bond_model"].get<std::string>().c_str(),
+      j["elastic"]["static_solves"].get<long>(),
+      j.contains("strength")
+          ? (", " + std::to_string(j["strength"]["tension_runs"].get<long>()) + " tension runs")
+                .c_str()
+          : "");
+  if (j.contains("calibrated"))
+    for (const auto& [key, value] : j["calibrated"].items())
+      std::printf("  %-32s %.10g\n", key.c_str(), value.get<double>());
   std::cout << "dembridge: wrote " << (r.output_dir / "calibration.json").string() << std::endl;
   if (!r.reached)
     throw std::runtime_error(j["targets_file"].get<std::string>() + ": " + r.failure);

@@ -96,9 +96,9 @@ ElasticSample ElasticProbe::measure(double ratio_parameter, double modulus_param
   }
   const dem::StaticResult st = dem::solve_static(model_);
   ++solves_;
-  const auto a = dem::axial_response(p, model_.groups[std::size_t(fixed_group_)],
-                                     model_.groups[std::size_t(loaded_group_)],
-                                     config_.measure.modulus_axis);
+  const auto a =
+      dem::axial_response(p, model_.groups[std::size_t(fixed_group_)],
+                          model_.groups[std::size_t(loaded_group_)], config_.measure.modulus_axis);
   ElasticSample s;
   s.ratio_parameter = ratio_parameter;
   s.modulus_parameter = modulus_parameter;
@@ -203,7 +203,8 @@ ElasticCalibration calibrate_elastic(ElasticProbe& probe, const dem::BondMateria
     std::fflush(stdout);
     const bool e_ok =
         std::abs(s.youngs_modulus - t.youngs_modulus) <= t.elastic_tolerance * t.youngs_modulus;
-    const bool nu_ok = std::abs(s.poisson_ratio - t.poisson_ratio) <= t.elastic_tolerance * nu_scale;
+    const bool nu_ok =
+        std::abs(s.poisson_ratio - t.poisson_ratio) <= t.elastic_tolerance * nu_scale;
     if (e_ok && nu_ok)
     {
       c.reached = true;

@@ -19,13 +19,14 @@ json elastic_json(const ElasticCalibration& c, const CalibrationTargets& t)
   double seconds = 0;
   for (const auto& s : c.iterations)
   {
-    rows.push_back({{c.ratio_key, s.ratio_parameter},
-                    {c.modulus_key, s.modulus_parameter},
-                    {"stiffness_ratio_kn_over_ks", s.kappa},
-                    {"youngs_modulus", s.youngs_modulus},
-                    {"poisson_ratio", s.poisson_ratio},
-                    {"poisson_ratio_lateral", {s.poisson_ratio_lateral[0], s.poisson_ratio_lateral[1]}},
-                    {"solve_seconds", s.seconds}});
+    rows.push_back(
+        {{c.ratio_key, s.ratio_parameter},
+         {c.modulus_key, s.modulus_parameter},
+         {"stiffness_ratio_kn_over_ks", s.kappa},
+         {"youngs_modulus", s.youngs_modulus},
+         {"poisson_ratio", s.poisson_ratio},
+         {"poisson_ratio_lateral", {s.poisson_ratio_lateral[0], s.poisson_ratio_lateral[1]}},
+         {"solve_seconds", s.seconds}});
     seconds += s.seconds;
   }
   json j = {{"method", "static solves of the uniaxial test: secant on ln(k_n/k_s) for nu from the "
@@ -169,12 +170,13 @@ std::string overridden_case_text(const fs::path& case_file, const std::vector<st
     else if (code.rfind("set ", 0) == 0 && code.find('=') != std::string::npos)
     {
       const std::string key = collapse(code.substr(4, code.find('=') - 4));
-      auto it = std::find_if(settings.begin(), settings.end(), [&](const Setting& s)
+      auto it = std::find_if(settings.begin(), settings.end(),
+                             [&](const Setting& s)
                              { return !s.written && s.path == path && s.key == key; });
       if (it != settings.end())
       {
-        out += indent + "set " + key + " = " + it->value + "  # " + it->note +
-               "; the case had " + trim(code.substr(code.find('=') + 1)) + "\n";
+        out += indent + "set " + key + " = " + it->value + "  # " + it->note + "; the case had " +
+               trim(code.substr(code.find('=') + 1)) + "\n";
         it->written = true;
         continue;
       }

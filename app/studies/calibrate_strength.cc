@@ -82,10 +82,10 @@ StrengthSample run_to_failure(const fs::path& file, const std::vector<std::strin
   if (!summary.contains("final_to_peak_load") && summary.contains("final_stress"))
     final_to_peak = summary["final_stress"].get<double>() / r.peak_stress;
   if (!(std::abs(final_to_peak) < 0.9))
-    throw std::runtime_error(name + ": Simulation/end time: the specimen had not failed when the "
-                                    "run ended (final load " +
-                             verify_detail::num(final_to_peak) +
-                             " of the peak); load it further");
+    throw std::runtime_error(name +
+                             ": Simulation/end time: the specimen had not failed when the "
+                             "run ended (final load " +
+                             verify_detail::num(final_to_peak) + " of the peak); load it further");
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -211,8 +211,9 @@ CompressionResult measure_compression(const fs::path& file,
     line << "Calibration/target compressive to tensile ratio: " << target << " is "
          << (target > c.ratio ? "beyond" : "below") << " what " << bond_model
          << " bonds give on this case: sigma_c / sigma_t = " << c.ratio
-         << " at the calibrated strengths (scaling every strength together keeps this ratio; "
-            "Potyondy and Cundall (2004) report such low ratios for bonded-particle models)";
+         << " at the calibrated strengths, and scaling them together keeps it (the case's "
+            "ratio of shear to tensile bond strength sets it; Potyondy and Cundall (2004) "
+            "report bonded-particle ratios far below rock's)";
     c.failure = line.str();
   }
   return c;

@@ -20,7 +20,7 @@ namespace dembridge::app
 {
 struct StrengthSample
 {
-  double factor = 1;          ///< on the strength case's own strengths
+  double factor = 1;           ///< on the strength case's own strengths
   double tensile_strength = 0; ///< Damage/tensile strength of the run, Pa
   double shear_strength = 0;   ///< Damage/shear strength, Pa
   double cohesion = 0;         ///< Damage/cohesion, Pa
@@ -57,7 +57,7 @@ struct CompressionResult
   double peak_stress = 0; ///< sigma_c, Pa
   double ratio = 0;       ///< sigma_c / sigma_t
   double seconds = 0;
-  bool reached = true;  ///< no target, or the target within the strength tolerance
+  bool reached = true; ///< no target, or the target within the strength tolerance
   std::string failure; ///< the one line when the target is out of reach
 };
 CompressionResult measure_compression(const std::filesystem::path& compression_case,
