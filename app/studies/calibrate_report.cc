@@ -238,7 +238,13 @@ for ax, (key, label, scale, part, what) in zip(axes, panels):
     ax.axhspan(target - band, target + band, color="k", alpha=0.1, label="tolerance")
     ax.set_xlabel(what); ax.set_ylabel(label)
     ax.set_xticks(range(1, len(y) + 1)); ax.grid(alpha=0.3); ax.legend()
-fig.suptitle(j["targets_file"] + ": " + ("reached" if j["reached"] else "not reached"))
+title = j["targets_file"] + ": " + ("reached" if j["reached"] else "not reached")
+if "compression" in j:
+    c = j["compression"]
+    title += f"; sigma_c / sigma_t = {c['compressive_to_tensile_ratio']:.3g}"
+    if "target" in c:
+        title += f" (target {c['target']:.3g})"
+fig.suptitle(title)
 fig.tight_layout()
 fig.savefig(png, dpi=110)
 )PY";
