@@ -65,6 +65,7 @@ Inputs read_inputs(const CalibrateOptions& o)
     in.strength_case = case_relative(in.case_dir, in.targets.strength_case, "strength case");
     in.compression_case =
         case_relative(in.case_dir, in.targets.compression_case, "compression case");
+    check_failure_cases(in.strength_case, in.compression_case, in.bond_model);
     WorkingDirectory cd(in.case_dir); // case-relative paths
     in.config = parse_dem_case(*prm);
     in.probe = std::make_unique<ElasticProbe>(in.config); // builds the packing
@@ -176,6 +177,12 @@ std::optional<StrengthCalibration> calibrate_strengths(const Inputs& in,
     return std::nullopt;
   }
   const fs::path scratch = dir / "strength_runs";
+  // the runs' folders go with the command, also when a run fails
+  struct RemoveScratch
+  {
+    fs::path path;
+    ~RemoveScratch() { fs::remove_all(path); }
+  } remove_scratch{scratch};
   StrengthCalibration s = calibrate_strength(in.strength_case, bond_overrides(elastic),
                                              in.bond_model, in.targets, scratch, o.progress);
   j["strength"] = strength_json(s, in.targets);
@@ -201,7 +208,6 @@ std::optional<StrengthCalibration> calibrate_strengths(const Inputs& in,
       std::printf("calibrate: compression run: peak stress %.6g Pa, sigma_c / sigma_t = %.4g\n",
                   c.peak_stress, c.ratio);
   }
-  fs::remove_all(scratch);
   return s;
 }
 

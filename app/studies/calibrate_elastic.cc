@@ -186,8 +186,8 @@ ElasticCalibration calibrate_elastic(ElasticProbe& probe, const dem::BondMateria
   {
     if (int(c.iterations.size()) >= t.max_static_solves)
     {
-      c.failure = "Calibration/max static solves: " + std::to_string(t.max_static_solves) +
-                  " solves did not bring E and nu within the elastic tolerance";
+      c.failure = "Calibration/max elastic solves: " + std::to_string(t.max_static_solves) +
+                  " static solves did not bring E and nu within Calibration/tolerance";
       break;
     }
     ElasticSample s = probe.measure(ratio, modulus);

@@ -49,6 +49,20 @@ BaseStrengths read_base(dealii::ParameterHandler& prm, const std::string& name,
   return b;
 }
 
+/// The compression case: an explicit run to failure of the calibrated bond model.
+void check_compression_case(dealii::ParameterHandler& prm, const std::string& name,
+                            const std::string& bond_model)
+{
+  if (prm.get("Mode") != "dem")
+    throw std::runtime_error(name + ": Mode: the compression case must be a DEM case");
+  if (prm.get({"Simulation"}, "solver") != "explicit")
+    throw std::runtime_error(name + ": Simulation/solver: the compression case runs to "
+                                    "failure, which needs the explicit solver");
+  if (prm.get({"Bonds"}, "model") != bond_model)
+    throw std::runtime_error(name + ": Bonds/model: '" + prm.get({"Bonds"}, "model") +
+                             "', and the elastic case calibrates '" + bond_model + "' bonds");
+}
+
 std::string set(const std::string& key, double value)
 {
   return key + "=" + verify_detail::num(value);
@@ -155,8 +169,9 @@ StrengthCalibration calibrate_strength(const fs::path& file,
   {
     if (int(c.iterations.size()) >= t.max_tension_runs)
     {
-      c.failure = "Calibration/max tension runs: " + std::to_string(t.max_tension_runs) +
-                  " runs did not bring the peak stress within the strength tolerance";
+      c.failure =
+          "Calibration/max strength runs: " + std::to_string(t.max_tension_runs) +
+          " tension runs did not bring the peak stress within Calibration/strength tolerance";
       break;
     }
     const fs::path dir = scratch / ("tension_" + std::to_string(c.iterations.size() + 1));
@@ -181,6 +196,17 @@ StrengthCalibration calibrate_strength(const fs::path& file,
 
 namespace dembridge::app
 {
+void check_failure_cases(const fs::path& strength_case, const fs::path& compression_case,
+                         const std::string& bond_model)
+{
+  if (!strength_case.empty())
+    read_base(*read_case(strength_case.string(), {}), strength_case.filename().string(),
+              bond_model);
+  if (!compression_case.empty())
+    check_compression_case(*read_case(compression_case.string(), {}),
+                           compression_case.filename().string(), bond_model);
+}
+
 CompressionResult measure_compression(const fs::path& file,
                                       const std::vector<std::string>& calibrated_overrides,
                                       double tensile_strength, const CalibrationTargets& t,
@@ -188,16 +214,8 @@ CompressionResult measure_compression(const fs::path& file,
 {
   CompressionResult c;
   c.case_file = file.string();
-  {
-    auto prm = read_case(file.string(), calibrated_overrides);
-    const std::string name = file.filename().string();
-    if (prm->get({"Simulation"}, "solver") != "explicit")
-      throw std::runtime_error(name + ": Simulation/solver: the compression case runs to "
-                                      "failure, which needs the explicit solver");
-    if (prm->get({"Bonds"}, "model") != bond_model)
-      throw std::runtime_error(name + ": Bonds/model: '" + prm->get({"Bonds"}, "model") +
-                               "', and the elastic case calibrates '" + bond_model + "' bonds");
-  }
+  check_compression_case(*read_case(file.string(), calibrated_overrides), file.filename().string(),
+                         bond_model);
   const StrengthSample r = run_to_failure(file, calibrated_overrides, scratch / "compression");
   fs::remove_all(scratch / "compression");
   c.peak_stress = r.peak_stress;

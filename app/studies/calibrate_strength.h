@@ -48,6 +48,13 @@ StrengthCalibration calibrate_strength(const std::filesystem::path& strength_cas
                                        const CalibrationTargets& targets,
                                        const std::filesystem::path& scratch, bool progress = true);
 
+/// Reads the strength and compression cases (either path may be empty) and checks that they can
+/// measure what they are for, before any solve: throws std::runtime_error "<case>: <key>:
+/// <reason>".
+void check_failure_cases(const std::filesystem::path& strength_case,
+                         const std::filesystem::path& compression_case,
+                         const std::string& bond_model);
+
 /// sigma_c / sigma_t: one compression run to failure at the calibrated strengths. Scaling every
 /// strength by one factor leaves the ratio unchanged, so it is measured and compared with the
 /// target, not iterated on.
