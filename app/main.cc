@@ -3,7 +3,7 @@
 //   dembridge print-parameters
 //   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
 //   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
-//   dembridge calibrate TARGETS.prm [--set ...] [--output-dir DIR]   (calibration.json, calibrated.prm)
+//   dembridge calibrate TARGETS.prm [--set ...] [--output-dir DIR]   (calibration.json)
 //   dembridge compare COUPLED_CASE.prm [--set ...] [--output-dir DIR]   (comparison.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/. Each command's
 // options and body live in app/cli/ and app/studies/; main parses and dispatches.
