@@ -3,9 +3,11 @@
 //   dembridge print-parameters
 //   dembridge verify DEM_CASE.prm [--material-from S.json | --youngs-modulus E --poisson-ratio NU]
 //   dembridge elasticity DEM_CASE.prm [--set ...] [--output-dir DIR]   (elasticity.json)
+//   dembridge calibrate TARGETS.prm [--set ...] [--output-dir DIR]   (calibration.json)
 //   dembridge compare COUPLED_CASE.prm [--set ...] [--output-dir DIR]   (comparison.json)
 // The application only parses, builds and runs; physics lives in dem/ and fem/. Each command's
 // options and body live in app/cli/ and app/studies/; main parses and dispatches.
+#include "app/cli/calibrate_command.h"
 #include "app/cli/command_line.h"
 #include "app/cli/run_command.h"
 #include "app/cli/verify_command.h"
@@ -47,6 +49,8 @@ int main(int argc, char** argv)
   auto* verify_cmd = app::add_verify_command(cli, verify);
   app::ElasticityOptions elasticity;
   auto* elasticity_cmd = app::add_elasticity_command(cli, elasticity);
+  app::CalibrateOptions calibrate;
+  auto* calibrate_cmd = app::add_calibrate_command(cli, calibrate);
 #ifdef DEMBRIDGE_HAVE_COUPLING
   app::CompareOptions compare;
   auto* compare_cmd = app::add_compare_command(cli, compare);
@@ -78,6 +82,11 @@ int main(int argc, char** argv)
     {
       job.require_one_rank("elasticity", "the static solver is serial");
       return app::run_elasticity(elasticity);
+    }
+    if (*calibrate_cmd)
+    {
+      job.require_one_rank("calibrate", "the static solver is serial");
+      return app::run_calibrate(calibrate);
     }
 #ifdef DEMBRIDGE_HAVE_COUPLING
     if (*compare_cmd)

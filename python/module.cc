@@ -75,6 +75,7 @@ std::string check_case_file(const std::string& case_file, const std::vector<std:
       });
 }
 } // namespace
+void bind_calibrate(py::module_& m); // python/calibrate_bindings.cc
 } // namespace dembridge::python
 
 PYBIND11_MODULE(_dembridge, m)
@@ -96,4 +97,5 @@ PYBIND11_MODULE(_dembridge, m)
   m.def("check_case_file", &check_case_file, py::arg("case_file"), py::arg("overrides"),
         "Reads and checks a case without running it; returns its parameters as JSON text.");
   bind_model(m);
+  bind_calibrate(m);
 }

@@ -1,4 +1,5 @@
 #include "app/input/case_file.h"
+#include "app/input/calibration_parameters.h"
 #include "app/input/case_json.h"
 #include "app/input/case_scan.h"
 #include "app/input/contact_parameters.h"
@@ -36,6 +37,7 @@ void declare_all_parameters(dealii::ParameterHandler& prm, const std::vector<std
   declare_load_parameters(prm, loads);
   declare_wall_parameters(prm, walls);
   declare_verification_parameters(prm);
+  declare_calibration_parameters(prm);
 #ifdef DEMBRIDGE_HAVE_FEM
   fem::declare_parameters(prm);
 #endif

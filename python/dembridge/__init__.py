@@ -23,6 +23,7 @@ import tempfile
 import numpy as np
 
 from ._dembridge import CaseError
+from ._dembridge import calibrate  # noqa: F401 (docs/calibration.md)
 from ._dembridge import Model as _Model
 from ._dembridge import check_case_file as _check_case_file
 from ._dembridge import run_case_file as _run_case_file
