@@ -28,7 +28,7 @@ from ._dembridge import Model as _Model
 from ._dembridge import check_case_file as _check_case_file
 from ._dembridge import run_case_file as _run_case_file
 
-__all__ = ["run", "Run", "Model", "CaseError", "check", "read_history", "overrides"]
+__all__ = ["run", "Run", "Model", "CaseError", "check", "read_history", "overrides", "calibrate"]
 
 
 def _value_text(value):
