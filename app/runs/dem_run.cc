@@ -10,9 +10,6 @@
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
-#ifdef DEMBRIDGE_HAVE_FEM
-#include "fem/bond_network_solver.h"
-#endif
 #include "app/output/result_warnings.h"
 #include <cmath>
 #include <cstdio>
@@ -24,24 +21,6 @@ namespace dembridge::app
 {
 namespace
 {
-/// Simulation/static linear solver: auto = PETSc's GAMG from 150 k unknowns (where it starts to
-/// beat Jacobi CG, bench/RESULTS_STATIC.md), gamg = always, cg = never.
-dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
-{
-  dem::StaticSettings base;
-  const std::string linear = prm.get({"Simulation"}, "static linear solver");
-#ifdef DEMBRIDGE_HAVE_FEM
-  if (linear != "cg")
-    base.iterative_solver = fem::gamg_iterative_solver();
-  base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
-#else
-  if (linear == "gamg")
-    throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
-                          "dembridge was built without the fem layer (use auto or cg)");
-#endif
-  return base;
-}
-
 /// A static run in load steps (dem_static_run.h): its deflection and the solver's figures.
 dem::RunResult run_static_case(dealii::ParameterHandler& prm, dem::Model& model,
                                const dem::CaseConfig& config, const OutputSettings& out,

@@ -4,6 +4,9 @@
 #include "app/output/particle_vtu.h"
 #include "dem/core/output_file.h"
 #include "dem/measurements/particle_stress.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/bond_network_solver.h"
+#endif
 #include <cstdio>
 #include <iomanip>
 
@@ -22,6 +25,23 @@ std::vector<std::string> group_names(const dem::Model& model)
   for (std::size_t g = 0; g < model.groups.size() && g < 32; ++g)
     names.push_back(model.groups[g].name);
   return names;
+}
+
+// auto: GAMG from 150 k unknowns, where it starts to beat Jacobi CG (bench/RESULTS_STATIC.md)
+dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
+{
+  dem::StaticSettings base;
+  const std::string linear = prm.get({"Simulation"}, "static linear solver");
+#ifdef DEMBRIDGE_HAVE_FEM
+  if (linear != "cg")
+    base.iterative_solver = fem::gamg_iterative_solver();
+  base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
+#else
+  if (linear == "gamg")
+    throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
+                          "dembridge was built without the fem layer (use auto or cg)");
+#endif
+  return base;
 }
 
 namespace

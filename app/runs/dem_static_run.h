@@ -21,6 +21,10 @@ struct StaticRun
   int load_steps = 1;
 };
 
+/// Simulation/static linear solver as the settings every load step starts from: PETSc's GAMG
+/// for large systems where the build has the fem layer (auto), always (gamg) or never (cg).
+dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm);
+
 /// `base`: the solver settings every step starts from (Simulation/static linear solver).
 StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
                                 const OutputSettings& out, const std::filesystem::path& dir,
