@@ -1,4 +1,4 @@
-"""dembridge from Python: run cases, read their results, step DEM models.
+"""dembridge from Python: run cases, read their results, step and solve DEM models.
 
     import dembridge
     run = dembridge.run("examples/cantilever.prm", output_dir="out/c",
@@ -9,6 +9,10 @@
     model = dembridge.Model("examples/cantilever.prm")
     model.step(100)
     model.positions                      # (N, 3) view of the model's own arrays
+
+    model = dembridge.Model("examples/compression_hcp.prm", set={"Bonds/stiffness ratio": 3})
+    model.solve_static()                 # the command line's static solver
+    model.figures()["youngs_modulus"]    # summary.json's figures of the model's state
 
 A case is a .prm or .json file, or a dict in the form of summary.json's `parameters`
 ({"Mode": "dem", "Particles": {"radius": 0.01, ...}}). `set` overrides keys as the command
@@ -142,9 +146,14 @@ def check(case, set=None):  # noqa: A002
 
 
 class Model(_Model):
-    """A DEM case built as `dembridge run` builds it, to step from Python.
+    """A DEM case built as `dembridge run` builds it, to step or solve from Python.
 
-    Model(case, set=None); step(n); run(); arrays: positions, reference_positions,
+    Model(case, set=None); step(n): explicit time steps; solve_static(time=None): one solve of
+    the command line's static solver (the loads at `time`, None: the final state), its solver
+    figures as a dict; run(): the case to its end as `dembridge run` runs it, static or
+    explicit, without files; figures(): summary.json's figures of the current state (after
+    run(), the command line's to the bit, an explicit run's fits to its load history aside).
+    A model is stepped, or solved, or run. Arrays: positions, reference_positions,
     displacements, velocities, angular_velocities, forces, torques, radii, masses, ids,
     bond_ends, bond_states, bond_damage, bond_forces; stresses() (N, 3, 3) in Pa. The arrays
     other than displacements, bond_ends and stresses() are read-only views of the model's
