@@ -347,7 +347,7 @@ void bind_model(py::module_& m)
                       "A DEM case built as `dembridge run` builds it, stepped or solved "
                       "from Python; its state as NumPy arrays");
   c.def(py::init<const std::string&, const std::vector<std::string>&>(), py::arg("case_file"),
-        py::arg("overrides"))
+        py::arg("overrides"), py::call_guard<py::gil_scoped_release>())
       .def("step", &Model::step, py::arg("n") = 1, py::call_guard<py::gil_scoped_release>(),
            "Advances n explicit time steps")
       .def(

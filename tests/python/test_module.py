@@ -199,7 +199,8 @@ class Study(unittest.TestCase):
              "--tests", "compression", "--solver", "static", "--jobs", "2", "--no-plots"],
             capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
-        rows = list(csv.DictReader(open(os.path.join(out, "results.csv"))))
+        with open(os.path.join(out, "results.csv")) as f:
+            rows = list(csv.DictReader(f))
         self.assertEqual(sorted(r["packing"] for r in rows), ["cubic", "hcp"])
         for row in rows:
             folder = os.path.join(out, "runs", row["run"])
