@@ -2,7 +2,7 @@
 """The Python module's tutorial sweep (docs/python.md): Young's modulus and Poisson's ratio of
 the HCP compression specimen (examples/compression_hcp.prm, r = 5 mm, parallel bonds) against
 the bond stiffness ratio k_n / k_s, one dembridge.Model static solve per point, beside Wang and
-Mora's E_x of the ideal HCP lattice (thesis eq. 2). Writes the figure and the numbers:
+Mora's E_x of the ideal HCP lattice (thesis eq. 2). Prints the numbers and draws the figure:
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/study_sweep.py [--out docs/python_sweep.png]
 
@@ -11,7 +11,6 @@ extrapolates to the ideal porosity, docs/specimens.md), so the two curves are co
 E falls as the shear stiffness falls (ratio up) in both.
 """
 import argparse
-import json
 import sys
 import time
 from pathlib import Path
@@ -75,8 +74,7 @@ def main():
               f"nu_xy = {r['poisson_ratio_xy']:.4f}, nu_xz = {r['poisson_ratio_xz']:.4f}")
     print(f"{len(rows)} static solves in {seconds:.1f} s")
     plot(rows, a.out)
-    Path(a.out).with_suffix(".json").write_text(json.dumps(rows, indent=1) + "\n")
-    print(f"wrote {a.out} and {Path(a.out).with_suffix('.json')}")
+    print(f"wrote {a.out}")
     return 0
 
 
