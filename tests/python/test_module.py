@@ -81,6 +81,7 @@ class Arrays(unittest.TestCase):
         figures = model.run()
         self.assertEqual(figures["stop_reason"], _summary(out)["stop_reason"])
         self.assertEqual(figures["steps"], _summary(out)["steps"])
+        same_figures(self, figures, _summary(out))  # the tip deflection, energies, stresses
         u_file = np.array(u_values).reshape(-1, 3)
         row_of_id = np.argsort(model.ids)
         u_model = model.displacements[row_of_id[np.array(ids_file, dtype=int)]]
