@@ -2,17 +2,21 @@
 #include "app/cli/case_folder.h"
 #include "app/input/case_file.h"
 #include "app/input/dem_parameters.h"
+#include "app/output/contact_output.h"
+#include "app/output/dem_history.h"
 #include "app/output/result_warnings.h"
 #include "app/runs/dem_static_run.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/model/model.h"
 #include "dem/solvers/run_explicit.h"
 #include <filesystem>
+#include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <sstream>
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -31,9 +35,27 @@ void register_case_error(py::module_& m)
 
 namespace
 {
-/// A run's observer that writes nothing: Model.run() gives the figures, not files.
-class SilentObserver : public dem::RunObserver
+/// A run's observer that keeps history.csv's rows (the command line's columns and format) in
+/// memory and writes no file.
+class HistoryObserver : public dem::RunObserver
 {
+public:
+  HistoryObserver(std::ostream& history, const dem::Model& model)
+      : history_(history), model_(model), contacts_(model)
+  {
+  }
+  void on_record(const dem::ExplicitSolver& s) override
+  {
+    app::history_row(history_,
+                     {s.steps(), s.time(), s.energy(), s.max_speed(), s.unbalanced_force_ratio(),
+                      s.n_broken_bonds()},
+                     model_.particles, s.groups(), contacts_);
+  }
+
+private:
+  std::ostream& history_;
+  const dem::Model& model_;
+  const app::ContactOutput contacts_;
 };
 
 /// JSON text (what the library's summary functions write) as a Python object.
@@ -108,22 +130,31 @@ public:
       throw CaseError("Model.run: the model was stepped, solved or run already (build a new "
                       "Model)");
     ran_ = true;
+    std::ostringstream history;
+    const app::ContactOutput contacts(model_);
+    history << app::history_header(model_, contacts) << std::setprecision(10);
     in_the_case_folder(
         [&]
         {
           if (config_.run.static_solver)
           {
-            static_run_ =
-                app::solve_static_load_steps(model_, config_, output_.load_steps, static_settings_);
+            const auto record = [&](int k, double t, const dem::StaticResult&)
+            {
+              app::history_row(history, app::static_step_record(model_, k, t), model_.particles,
+                               model_.groups, contacts);
+            };
+            static_run_ = app::solve_static_load_steps(model_, config_, output_.load_steps,
+                                                       static_settings_, record);
             return;
           }
           app::check_explicit_end_time(config_.run.end_time, config_.particles.save_file);
           dem::RunSchedule schedule;
           schedule.record_interval = output_.history_interval;
           schedule.snapshot_interval = output_.snapshot_interval;
-          SilentObserver observer;
+          HistoryObserver observer(history, model_);
           explicit_run_ = dem::run_explicit(model_, config_, observer, schedule);
         });
+    history_ = history.str();
     return figures();
   }
 
@@ -168,6 +199,7 @@ public:
     return solver_ ? solver_->steps() : explicit_run_ ? explicit_run_->steps : 0;
   }
   const dem::Model& model() const { return model_; }
+  const std::string& history() const { return history_; }
   double time_step() const { return model_.time_step; }
   bool static_case() const { return config_.run.static_solver; }
 
@@ -212,6 +244,7 @@ private:
   std::unique_ptr<dem::ExplicitSolver> solver_;
   std::optional<app::StaticRun> static_run_;
   std::optional<dem::RunResult> explicit_run_;
+  std::string history_; ///< history.csv's text of run()
   bool ran_ = false;
 };
 
@@ -380,6 +413,9 @@ void bind_model(py::module_& m)
       .def(
           "figures", [](const Model& model) { return from_json(model.figures()); },
           "summary.json's figures of the model's current state, as a dict")
+      .def_property_readonly("history_text", &Model::history,
+                             "history.csv's text of run() (the command line's file); empty "
+                             "before run()")
       .def_property_readonly("time", &Model::time, "s, the simulated time")
       .def_property_readonly("steps", &Model::steps)
       .def_property_readonly("time_step", &Model::time_step, "s")

@@ -11,10 +11,8 @@
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <optional>
 #include <vector>
 
 namespace dembridge::app
@@ -92,6 +90,7 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   ContactOutput(model).summary(j, r.time);
   return run;
 }
+
 /// A static run has no time steps: checkpoints and --resume are refused.
 void refuse_static_checkpoints(const dem::CaseConfig& config, const CheckpointSettings& checkpoint)
 {
@@ -101,7 +100,6 @@ void refuse_static_checkpoints(const dem::CaseConfig& config, const CheckpointSe
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
 }
-
 } // namespace
 
 nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem::path& dir,

@@ -74,6 +74,17 @@ double unbalanced_force_ratio(const dem::ParticleStore& p, const dem::BondStore&
 }
 } // namespace
 
+HistoryRecord static_step_record(const dem::Model& model, int k, double t)
+{
+  HistoryRecord r;
+  r.step = k;
+  r.time = t;
+  r.energy.strain = dem::particle_stresses(model.particles, model.bonds).strain_energy;
+  r.energy.external = r.energy.strain; // Clapeyron: linear, loaded slowly from rest
+  r.unbalanced_force_ratio = unbalanced_force_ratio(model.particles, model.bonds);
+  return r;
+}
+
 StaticRun solve_static_load_steps(dem::Model& model, const dem::CaseConfig& config, int load_steps,
                                   const dem::StaticSettings& base, const StaticStepDone& step_done)
 {
@@ -114,13 +125,7 @@ StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config
                 k, n, t, st.n_free_dofs, st.method.c_str(), st.iterations,
                 st.assembly_seconds + st.solve_seconds);
     std::fflush(stdout);
-    HistoryRecord r;
-    r.step = k;
-    r.time = t;
-    r.energy.strain = dem::particle_stresses(model.particles, model.bonds).strain_energy;
-    r.energy.external = r.energy.strain; // Clapeyron: linear, loaded slowly from rest
-    r.unbalanced_force_ratio = unbalanced_force_ratio(model.particles, model.bonds);
-    history_row(history, r, model.particles, model.groups, contacts);
+    history_row(history, static_step_record(model, k, t), model.particles, model.groups, contacts);
     const bool snapshot =
         k == 1 || k == n || (out.snapshot_interval > 0 && k % out.snapshot_interval == 0);
     if (out.write_vtu && snapshot)

@@ -11,6 +11,7 @@
 // line's figures to the bit.
 #include "app/input/dem_parameters.h"
 #include "app/output/dem_figures.h"
+#include "app/output/dem_history.h"
 #include "dem/model/model.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
@@ -46,6 +47,10 @@ StaticRun solve_static_load_steps(dem::Model& model, const dem::CaseConfig& conf
 StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
                                 const OutputSettings& out, const std::filesystem::path& dir,
                                 const dem::StaticSettings& base = {});
+
+/// history.csv's row of load step @p k at load time @p t, the model in that step's equilibrium
+/// (kinetic and damping energy zero, external work = strain energy: Clapeyron).
+HistoryRecord static_step_record(const dem::Model& model, int k, double t);
 
 /// summary.json's figures of a static run's solves: load steps, the deflection (returned in the
 /// result beside the stop reason and the solver time), the geometry, the bond classes and the

@@ -20,6 +20,7 @@ line's --set does. Errors are the command line's one-line messages, raised as
 dembridge.CaseError (a ValueError) naming the file and the key.
 """
 import csv
+import io
 import json
 import os
 import tempfile
@@ -87,7 +88,12 @@ def _json_value(value):
 def read_history(path):
     """history.csv (or any of our CSV files) as {column: NumPy array}."""
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+        return _columns(f)
+
+
+def _columns(lines):
+    """CSV lines as {column: NumPy array} (numbers where every value is one)."""
+    rows = list(csv.reader(lines))
     if not rows:
         return {}
     header, data = rows[0], rows[1:]
@@ -153,7 +159,7 @@ class Model(_Model):
     figures as a dict; run(): the case to its end as `dembridge run` runs it, static or
     explicit, without files; figures(): summary.json's figures of the current state (after
     run(), the command line's to the bit, an explicit run's fits to its load history aside).
-    A model is stepped, or solved, or run. Arrays: positions, reference_positions,
+    A model is stepped, or solved, or run; history: run()'s history.csv as arrays. Arrays: positions, reference_positions,
     displacements, velocities, angular_velocities, forces, torques, radii, masses, ids,
     bond_ends, bond_states, bond_damage, bond_forces; stresses() (N, 3, 3) in Pa. The arrays
     other than displacements, bond_ends and stresses() are read-only views of the model's
@@ -162,3 +168,9 @@ class Model(_Model):
     def __init__(self, case, set=None):  # noqa: A002
         with _CaseFile(case) as path:
             super().__init__(path, overrides(set))
+
+    @property
+    def history(self):
+        """history.csv's columns of run() as {column: array} (one row per record of an explicit
+        run, per load step of a static one); empty before run()."""
+        return _columns(io.StringIO(self.history_text)) if self.history_text else {}

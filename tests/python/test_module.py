@@ -82,6 +82,9 @@ class Arrays(unittest.TestCase):
         self.assertEqual(figures["stop_reason"], _summary(out)["stop_reason"])
         self.assertEqual(figures["steps"], _summary(out)["steps"])
         same_figures(self, figures, _summary(out))  # the tip deflection, energies, stresses
+        with open(os.path.join(out, "history.csv")) as f:
+            self.assertEqual(model.history_text, f.read())  # every record, every digit
+        self.assertEqual(len(model.history["time"]), len(model.history_text.splitlines()) - 1)
         u_file = np.array(u_values).reshape(-1, 3)
         row_of_id = np.argsort(model.ids)
         u_model = model.displacements[row_of_id[np.array(ids_file, dtype=int)]]
@@ -146,6 +149,7 @@ class StaticModel(unittest.TestCase):
         self.assertGreater(figures["youngs_modulus"], 1e9)
         same_figures(self, figures, summary)
         self.assertEqual(figures["solver"]["type"], "static")
+        self.assertEqual(list(model.history["step"]), [1.0])  # one load step
 
     def test_solve_static_then_figures(self):
         import dembridge
