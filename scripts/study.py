@@ -18,9 +18,9 @@ Runs. Each run is dembridge.run(example, output_dir, set=[...]): the example cas
 overrides below, the same files and figures as `dembridge run EXAMPLE --set ...` (its
 summary.json records that command line); what the library prints goes to the run's
 dembridge.log. The module is the one of the build that --dembridge names (BUILD/app/dembridge:
-BUILD/python). --jobs N runs N specimens at a time in N worker
-processes (started with 'spawn': each imports the module afresh; a run changes the working
-directory of its process, so runs never share one).
+BUILD/python). --jobs N runs N specimens at a time in N worker processes (started with
+'spawn': each imports the module afresh; a run changes the working directory of its process,
+so runs never share one).
 
 Specimens. Each (packing, radius, seed) is generated once by dembridge (the compression example
 with `Particles/save file`, end time 0) and stored in OUT/specimens/; every test and bond model
@@ -196,9 +196,7 @@ def read_packing(path):
 
 def module_folder(exe):
     """The folder holding the Python package of the build that made `exe` (BUILD/app/dembridge:
-    BUILD/python), or None (then an installed dembridge package is used)."""
-    if exe is None:
-        return None
+    BUILD/python)."""
     folder = Path(exe).resolve().parent.parent / "python"
     if not (folder / "dembridge" / "__init__.py").exists():
         raise StudyError(f"the dembridge Python module of {exe} was not found (looked for "
@@ -209,7 +207,7 @@ def module_folder(exe):
 def import_dembridge(exe):
     """The dembridge module of `exe`'s build (module_folder), imported once per process."""
     folder = module_folder(exe)
-    if folder is not None and str(folder) not in sys.path:
+    if str(folder) not in sys.path:
         sys.path.insert(0, str(folder))
     try:
         return importlib.import_module("dembridge")
