@@ -1,13 +1,22 @@
 #include "python/model_bindings.h"
+#include "app/cli/case_folder.h"
 #include "app/input/case_file.h"
 #include "app/input/dem_parameters.h"
+#include "app/output/contact_output.h"
+#include "app/output/dem_history.h"
+#include "app/output/result_warnings.h"
+#include "app/runs/dem_static_run.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/model/model.h"
 #include "dem/solvers/run_explicit.h"
 #include <filesystem>
+#include <iomanip>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <sstream>
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -26,48 +35,56 @@ void register_case_error(py::module_& m)
 
 namespace
 {
-/// The working directory at a case file's folder while it lives (paths inside a case, such as
-/// particle files and meshes, are relative to it), as `dembridge run` does.
-class InCaseFolder
+/// A run's observer that keeps history.csv's rows (the command line's columns and format) in
+/// memory and writes no file.
+class HistoryObserver : public dem::RunObserver
 {
 public:
-  explicit InCaseFolder(const std::string& case_file) : previous_(fs::current_path())
+  HistoryObserver(std::ostream& history, const dem::Model& model)
+      : history_(history), model_(model), contacts_(model)
   {
-    fs::current_path(fs::absolute(case_file).parent_path());
   }
-  ~InCaseFolder() { fs::current_path(previous_); }
+  void on_record(const dem::ExplicitSolver& s) override
+  {
+    app::history_row(history_,
+                     {s.steps(), s.time(), s.energy(), s.max_speed(), s.unbalanced_force_ratio(),
+                      s.n_broken_bonds()},
+                     model_.particles, s.groups(), contacts_);
+  }
 
 private:
-  fs::path previous_;
+  std::ostream& history_;
+  const dem::Model& model_;
+  const app::ContactOutput contacts_;
 };
 
-/// A run's observer that writes nothing: Model.run() gives the state, not files.
-class SilentObserver : public dem::RunObserver
+/// JSON text (what the library's summary functions write) as a Python object.
+py::object from_json(const std::string& text)
 {
-};
+  return py::module_::import("json").attr("loads")(text);
+}
 
-/// A DEM case built and stepped in the explicit solver.
+/// A DEM case built as `dembridge run` builds it, then stepped in the explicit solver, solved by
+/// the static solver, or run to its end as the command line runs it.
 class Model
 {
 public:
   Model(const std::string& case_file, const std::vector<std::string>& overrides)
-      : case_name_(fs::path(case_file).filename().string())
+      : case_file_(fs::absolute(case_file).string())
   {
     // reading names the file or the override itself, as `dembridge run` does
     auto prm = rethrow_as_case_error([&] { return app::read_case(case_file, overrides); });
-    with_case_name(
+    in_the_case_folder(
         [&]
         {
           if (prm->get("Mode") != "dem")
             throw dem::InputError("Mode: " + prm->get("Mode") +
                                   ": dembridge.Model builds DEM cases (Mode = dem); "
                                   "dembridge.run() runs every mode");
-          InCaseFolder folder(case_file);
           config_ = app::parse_dem_case(*prm);
-          if (config_.run.static_solver)
-            throw dem::InputError("Simulation/solver: static: dembridge.Model steps the "
-                                  "explicit solver; dembridge.run() runs static cases");
           output_ = app::parse_output_settings(*prm);
+          static_settings_ = app::static_solver_settings(*prm);
+          bond_model_ = prm->get({"Bonds"}, "model");
           model_ = dem::build_model(config_);
         });
   }
@@ -75,80 +92,160 @@ public:
   /// Advances @p n time steps (the last one a record step: energies and bond forces fresh).
   void step(long n)
   {
-    if (ran_)
-      throw CaseError("Model.step: the model was run to its end by Model.run()");
+    if (ran_ || static_run_)
+      throw CaseError("Model.step: the model was run or solved already (build a new Model)");
     if (!solver_)
-    {
-      solver_ = std::make_unique<dem::ExplicitSolver>(
-          model_.particles, model_.bonds, model_.groups, model_.constraints, model_.loads,
-          dem::SolverSettings{model_.time_step, config_.run.particle_damping, config_.run.threads,
-                              config_.run.mass_damping});
-      for (const auto& contribution : model_.contributions)
-        solver_->add_contribution(contribution.get());
-    }
+      solver_ = dem::make_explicit_solver(model_, config_);
     for (long k = 0; k < n; ++k)
       solver_->step(k + 1 == n);
   }
 
-  /// Runs the case to its end as `dembridge run` does (the same solver, schedule and stop
-  /// criteria; no files): its figures as a dict.
-  py::dict run()
+  /// One static solve (the command line's static solver and linear solver settings) of the
+  /// loads at @p time (none: the final state); its solver figures as JSON.
+  std::string solve_static(std::optional<double> time)
   {
     if (solver_ || ran_)
-      throw CaseError("Model.run: the model was stepped or run already (build a new Model)");
-    ran_ = true;
-    dem::RunSchedule schedule;
-    schedule.record_interval = output_.history_interval;
-    schedule.snapshot_interval = output_.snapshot_interval;
-    SilentObserver observer;
-    const dem::RunResult r = dem::run_explicit(model_, config_, observer, schedule);
-    steps_ = r.steps;
-    time_ = r.time;
-    py::dict d;
-    d["steps"] = r.steps;
-    d["simulated_time"] = r.time;
-    d["stop_reason"] = r.stop_reason;
-    d["energy_balance_error"] = r.energy_balance_error;
-    d["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
-    if (r.deflection)
-      d[py::str(config_.measure.deflection_name)] = *r.deflection;
-    if (r.natural_frequency)
-      d["natural_frequency"] = *r.natural_frequency;
-    d["energy"] = py::dict(
-        py::arg("kinetic") = r.energy.kinetic, py::arg("strain") = r.energy.strain,
-        py::arg("damping") = r.energy.damping, py::arg("external_work") = r.energy.external,
-        py::arg("fracture") = r.energy.fracture);
-    return d;
+      throw CaseError("Model.solve_static: the model was stepped or run already (build a new "
+                      "Model)");
+    dem::StaticSettings settings = static_settings_;
+    if (time)
+      settings.time = *time;
+    in_the_case_folder(
+        [&]
+        {
+          const dem::StaticResult st = dem::solve_static(model_, settings);
+          dem::record_bond_forces(model_.particles, model_.bonds);
+          static_run_ = app::StaticRun{st, st.assembly_seconds + st.solve_seconds, 1};
+        });
+    nlohmann::json j;
+    app::add_static_run_figures(j, model_, config_, *static_run_);
+    return j["solver"].dump();
   }
 
-  double time() const { return solver_ ? solver_->time() : time_; }
-  long steps() const { return solver_ ? solver_->steps() : steps_; }
+  /// Runs the case to its end as `dembridge run` does (the same solver, load steps, schedule and
+  /// stop criteria; no files); its figures as JSON (figures()).
+  std::string run()
+  {
+    if (solver_ || ran_ || static_run_)
+      throw CaseError("Model.run: the model was stepped, solved or run already (build a new "
+                      "Model)");
+    ran_ = true;
+    std::ostringstream history;
+    const app::ContactOutput contacts(model_);
+    history << app::history_header(model_, contacts) << std::setprecision(10);
+    in_the_case_folder(
+        [&]
+        {
+          if (config_.run.static_solver)
+          {
+            const auto record = [&](int k, double t, const dem::StaticResult&)
+            {
+              app::history_row(history, app::static_step_record(model_, k, t), model_.particles,
+                               model_.groups, contacts);
+            };
+            static_run_ = app::solve_static_load_steps(model_, config_, output_.load_steps,
+                                                       static_settings_, record);
+            return;
+          }
+          app::check_explicit_end_time(config_.run.end_time, config_.particles.save_file);
+          dem::RunSchedule schedule;
+          schedule.record_interval = output_.history_interval;
+          schedule.snapshot_interval = output_.snapshot_interval;
+          HistoryObserver observer(history, model_);
+          explicit_run_ = dem::run_explicit(model_, config_, observer, schedule);
+        });
+    history_ = history.str();
+    return figures();
+  }
+
+  /// summary.json's figures of the model's current state (app/runs/dem_static_run.h), computed
+  /// by the command line's own code: after run() those of `dembridge run` (an explicit run's
+  /// moduli fitted to its load history aside: the Model keeps none).
+  std::string figures() const
+  {
+    nlohmann::json j;
+    j["warnings"] = nlohmann::json::array();
+    app::check_bond_coverage(model_.particles, model_.bonds.size(), config_, j);
+    dem::RunResult r;
+    if (static_run_)
+      r = app::add_static_run_figures(j, model_, config_, *static_run_);
+    else if (explicit_run_)
+      r = add_explicit_figures(j, *explicit_run_);
+    else
+    {
+      r.stop_reason = solver_ ? "stepped" : "not run";
+      r.time = time();
+      r.steps = steps();
+      if (!config_.measure.deflection_group.empty())
+      {
+        const auto& g = model_.groups[model_.group_index(config_.measure.deflection_group,
+                                                         "Measurements/deflection group")];
+        r.deflection_vector = dem::mean_displacement(model_.particles, g);
+        r.deflection = r.deflection_vector.dot(config_.measure.deflection_direction.normalized());
+      }
+    }
+    const dem::ParticleStresses stresses = dem::particle_stresses(model_.particles, model_.bonds);
+    app::add_final_state_figures(j, model_, config_, bond_model_, r, stresses, {},
+                                 broken_bonds() > 0);
+    return j.dump();
+  }
+
+  double time() const
+  {
+    return solver_ ? solver_->time() : explicit_run_ ? explicit_run_->time : 0;
+  }
+  long steps() const
+  {
+    return solver_ ? solver_->steps() : explicit_run_ ? explicit_run_->steps : 0;
+  }
   const dem::Model& model() const { return model_; }
+  const std::string& history() const { return history_; }
   double time_step() const { return model_.time_step; }
+  bool static_case() const { return config_.run.static_solver; }
 
 private:
-  template <typename Work> void with_case_name(Work&& work)
+  /// @p work in the case file's folder, its errors naming the file as the command line's do.
+  template <typename Work> void in_the_case_folder(Work&& work) const
   {
-    try
-    {
-      work();
-    }
-    catch (const std::exception& e)
-    {
-      // name the file as the CLI does: the message names the key and the reason
-      const std::string what = one_line_message(e);
-      throw CaseError(what.rfind(case_name_, 0) == 0 ? what : case_name_ + ": " + what);
-    }
+    rethrow_as_case_error([&] { app::in_case_folder(case_file_, work); });
   }
 
-  std::string case_name_;
+  long broken_bonds() const
+  {
+    long n = 0;
+    for (const auto state : model_.bonds.state)
+      n += state == dem::BondState::broken;
+    return n;
+  }
+
+  /// The explicit run's own figures, under summary.json's keys.
+  dem::RunResult add_explicit_figures(nlohmann::json& j, const dem::RunResult& r) const
+  {
+    j["solver"] = {{"type", "explicit"}};
+    j["time_step"] = model_.time_step;
+    j["steps"] = r.steps;
+    j["simulated_time"] = r.time;
+    j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
+                   {"damping", r.energy.damping},     {"external_work", r.energy.external},
+                   {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
+                   {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
+                   {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
+    j["energy_balance_error"] = r.energy_balance_error;
+    j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+    return r;
+  }
+
+  std::string case_file_;
   dem::CaseConfig config_;
   app::OutputSettings output_;
+  dem::StaticSettings static_settings_;
+  std::string bond_model_;
   dem::Model model_;
   std::unique_ptr<dem::ExplicitSolver> solver_;
+  std::optional<app::StaticRun> static_run_;
+  std::optional<dem::RunResult> explicit_run_;
+  std::string history_; ///< history.csv's text of run()
   bool ran_ = false;
-  long steps_ = 0;
-  double time_ = 0;
 };
 
 /// A read-only NumPy view of @p data (rows of @p columns values) kept alive by @p owner.
@@ -280,15 +377,50 @@ void bind_bond_views(py::class_<Model>& c)
 void bind_model(py::module_& m)
 {
   py::class_<Model> c(m, "Model",
-                      "A DEM case built as `dembridge run` builds it, stepped "
+                      "A DEM case built as `dembridge run` builds it, stepped or solved "
                       "from Python; its state as NumPy arrays");
   c.def(py::init<const std::string&, const std::vector<std::string>&>(), py::arg("case_file"),
-        py::arg("overrides"))
-      .def("step", &Model::step, py::arg("n") = 1, "Advances n explicit time steps")
-      .def("run", &Model::run, "Runs the case to its end as `dembridge run` does (no files)")
+        py::arg("overrides"), py::call_guard<py::gil_scoped_release>())
+      .def("step", &Model::step, py::arg("n") = 1, py::call_guard<py::gil_scoped_release>(),
+           "Advances n explicit time steps")
+      .def(
+          "solve_static",
+          [](Model& model, std::optional<double> time)
+          {
+            std::string text;
+            {
+              py::gil_scoped_release unlocked;
+              text = model.solve_static(time);
+            }
+            return from_json(text);
+          },
+          py::arg("time") = py::none(),
+          "One static solve, as the command line's static solver does it, of the loads at "
+          "`time` (s; None: the final state); the solver's figures as a dict")
+      .def(
+          "run",
+          [](Model& model)
+          {
+            std::string text;
+            {
+              py::gil_scoped_release unlocked;
+              text = model.run();
+            }
+            return from_json(text);
+          },
+          "Runs the case to its end as `dembridge run` does (no files); summary.json's figures "
+          "as a dict")
+      .def(
+          "figures", [](const Model& model) { return from_json(model.figures()); },
+          "summary.json's figures of the model's current state, as a dict")
+      .def_property_readonly("history_text", &Model::history,
+                             "history.csv's text of run() (the command line's file); empty "
+                             "before run()")
       .def_property_readonly("time", &Model::time, "s, the simulated time")
       .def_property_readonly("steps", &Model::steps)
       .def_property_readonly("time_step", &Model::time_step, "s")
+      .def_property_readonly("static_case", &Model::static_case,
+                             "whether the case asks for the static solver (Simulation/solver)")
       .def_property_readonly("n_particles",
                              [](const Model& s) { return s.model().particles.size(); })
       .def_property_readonly("n_bonds", [](const Model& s) { return s.model().bonds.size(); });

@@ -5,6 +5,7 @@
 #include "app/cli/run_command.h"
 #include "app/input/case_file.h"
 #include "app/job/mpi_job.h"
+#include "app/job/provenance.h"
 #include "dem/core/progress.h"
 #include "python/model_bindings.h"
 #include <deal.II/base/mpi.h>
@@ -54,6 +55,14 @@ void shut_down()
 int run_case_file(const std::string& case_file, const std::vector<std::string>& overrides,
                   const std::string& output_dir)
 {
+  // summary.json's command_line: the command that makes the same run from a shell
+  std::vector<std::string> words{"dembridge", "run", case_file, "--output-dir", output_dir};
+  for (const auto& o : overrides)
+    words.insert(words.end(), {"--set", o});
+  std::vector<const char*> argv;
+  for (const auto& w : words)
+    argv.push_back(w.c_str());
+  app::set_command_line(int(argv.size()), argv.data());
   app::RunOptions options;
   options.case_file = case_file;
   options.overrides = overrides;

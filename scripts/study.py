@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Full-DEM specimen study of the thesis (sections 4-5, Table 1): runs the simulation matrix
-packings x radii x bond models x tests (x random seeds) with `dembridge run` on the example
-cases, collects every run's summary into results.csv and draws the thesis' Figures 29-35.
+packings x radii x bond models x tests (x random seeds) on the example cases through the Python
+module (dembridge.run, docs/python.md: the library `dembridge run` is built on, in this process),
+collects every run's summary into results.csv and draws the thesis' Figures 29-35.
 
     /usr/bin/python3 scripts/study.py                         # the whole Table 1 matrix, static
     /usr/bin/python3 scripts/study.py --packings random --radii 5,7.5 --seeds 1-3 \\
@@ -12,6 +13,14 @@ Matrix (thesis Table 1): packings cubic (the thesis' "uniform"), hcp, random; ra
 k̄_n/k̄_s = 4.2) and tbbm (Timoshenko beam); tests tension, compression, bending; 5 random
 packings (seeds 1-5) per radius. As in the thesis, TBBM bending at r = 2.5 mm is left out
 (Table 1: 0 runs) unless --full is given. Any other radius or seed may be asked for.
+
+Runs. Each run is dembridge.run(example, output_dir, set=[...]): the example case with the
+overrides below, the same files and figures as `dembridge run EXAMPLE --set ...` (its
+summary.json records that command line); what the library prints goes to the run's
+dembridge.log. The module is the one of the build that --dembridge names (BUILD/app/dembridge:
+BUILD/python). --jobs N runs N specimens at a time in N worker processes (started with
+'spawn': each imports the module afresh; a run changes the working directory of its process,
+so runs never share one).
 
 Specimens. Each (packing, radius, seed) is generated once by dembridge (the compression example
 with `Particles/save file`, end time 0) and stored in OUT/specimens/; every test and bond model
@@ -40,13 +49,16 @@ Requires numpy and matplotlib (Debian: /usr/bin/python3); nothing else beyond th
 """
 import argparse
 import concurrent.futures
+import contextlib
 import csv
+import ctypes
+import importlib
 import json
 import math
+import multiprocessing
 import os
 import re
 import shutil
-import subprocess
 import sys
 import threading
 import time
@@ -182,9 +194,55 @@ def read_packing(path):
     return a[:, :3].copy(), a[:, 3].copy()
 
 
+def module_folder(exe):
+    """The folder holding the Python package of the build that made `exe` (BUILD/app/dembridge:
+    BUILD/python)."""
+    folder = Path(exe).resolve().parent.parent / "python"
+    if not (folder / "dembridge" / "__init__.py").exists():
+        raise StudyError(f"the dembridge Python module of {exe} was not found (looked for "
+                         f"{folder / 'dembridge'}); build it (the _dembridge target)")
+    return folder
+
+
+def import_dembridge(exe):
+    """The dembridge module of `exe`'s build (module_folder), imported once per process."""
+    folder = module_folder(exe)
+    if str(folder) not in sys.path:
+        sys.path.insert(0, str(folder))
+    try:
+        return importlib.import_module("dembridge")
+    except ImportError as e:
+        raise StudyError(f"the dembridge Python module does not import: {e}")
+
+
+@contextlib.contextmanager
+def output_into(log):
+    """The process' standard output and error (the library's C and C++ streams among them) go
+    to the open file `log` while the block runs."""
+    libc = ctypes.CDLL(None)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    libc.fflush(None)
+    log.flush()
+    saved = os.dup(1), os.dup(2)
+    try:
+        os.dup2(log.fileno(), 1)
+        os.dup2(log.fileno(), 2)
+        yield
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        libc.fflush(None)
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        os.close(saved[0])
+        os.close(saved[1])
+
+
 class Runner:
     def __init__(self, exe, out, verbose=False, extra_sets=()):
         self.exe = exe
+        self.module = None  # imported at the first run (a spawned worker imports its own)
         self.out = Path(out).resolve()
         self.verbose = verbose
         self.extra_sets = list(extra_sets)
@@ -198,18 +256,19 @@ class Runner:
             print(msg, flush=True)
 
     def dembridge(self, case, outdir, sets, logfile):
-        cmd = [str(self.exe), "run", str(case), "--output-dir", str(outdir)]
-        for s in sets + self.extra_sets:
-            cmd += ["--set", s]
+        """dembridge.run(case, outdir, sets): `dembridge run CASE --output-dir OUTDIR --set ...`
+        in this process, its output in `logfile`."""
+        if self.module is None:
+            self.module = import_dembridge(self.exe)
+        sets = list(sets) + self.extra_sets
         with open(logfile, "w") as log:
-            log.write(" ".join(f"'{c}'" if " " in c else c for c in cmd) + "\n")
-            log.flush()
-            proc = subprocess.run(cmd, stdout=log, stderr=subprocess.PIPE, text=True)
-            log.write(proc.stderr)
-        if proc.returncode != 0:
-            err = proc.stderr.strip().splitlines()
-            raise StudyError(f"dembridge failed ({logfile}): {err[-1] if err else proc.returncode}")
-        return cmd
+            log.write(f"dembridge.run({str(case)!r}, output_dir={str(outdir)!r}, set={sets!r})\n")
+            try:
+                with output_into(log):
+                    self.module.run(case, output_dir=outdir, set=sets)
+            except self.module.CaseError as e:
+                log.write(f"dembridge: error: {e}\n")
+                raise StudyError(f"dembridge failed ({logfile}): {e}")
 
     # -- specimen: generate once, drop spheres outside the main bonded cluster, derive groups
     def specimen(self, packing, radius_mm, seed):
@@ -369,52 +428,94 @@ def headline(r, summary):
     return txt
 
 
+def run_specimen(runner, items, report):
+    """The runs of one specimen, in order (bending after compression); report(run name, message
+    or None, error or None) after each. Returns the failures [(run name, error)]."""
+    r0 = items[0]
+    failures = []
+    try:
+        spec = runner.specimen(r0["packing"], r0["radius_mm"], r0["seed"])
+    except (StudyError, OSError) as e:
+        runner.log(f"FAILED specimen {specimen_name(r0['packing'], r0['radius_mm'], r0['seed'])}: {e}")
+        for r in items:
+            failures.append((run_name(r), str(e)))
+            report(run_name(r), None, str(e))
+        return failures
+    for r in items:
+        poisson = None
+        if r["test"] == "bending":
+            poisson = poisson_for_bending(runner.out, r)
+            if poisson is None and r["packing"] == "cubic":
+                poisson = 0.0
+        try:
+            status, secs = runner.run(spec, r, poisson)
+            if status == "ran":
+                s = json.loads((runner.out / "runs" / run_name(r) / "summary.json").read_text())
+                report(run_name(r), f"{secs:.1f} s  {headline(r, s)}", None)
+            else:
+                report(run_name(r), "done before, skipped", None)
+        except (StudyError, OSError, ValueError) as e:
+            failures.append((run_name(r), str(e)))
+            report(run_name(r), None, str(e))
+    return failures
+
+
+WORKER = {}
+
+
+def start_worker(exe, out, extra_sets):
+    """A spawned worker process: its own Runner and module."""
+    WORKER["runner"] = Runner(exe, out, extra_sets=extra_sets)
+    WORKER["runner"].module = import_dembridge(exe)
+
+
+def worker_specimen(items):
+    """run_specimen in a worker; the reports and failures go back to the study's process."""
+    reports = []
+    failures = run_specimen(WORKER["runner"], items,
+                            lambda *report: reports.append((*report, time.time())))
+    return reports, failures
+
+
 def execute(runner, runs, jobs):
-    """Runs grouped by specimen (bending after compression); specimens in parallel."""
+    """Runs grouped by specimen (bending after compression); with jobs > 1 that many specimens
+    at a time, each in a worker process started with 'spawn' (a fresh interpreter: the module's
+    MPI and working directory are its own, nothing is forked mid-run)."""
     by_spec = {}
     for r in runs:
         by_spec.setdefault(specimen_name(r["packing"], r["radius_mm"], r["seed"]), []).append(r)
     total = len(runs)
     done = [0]
-    failures = []
     t_start = time.time()
 
-    def work(items):
-        r0 = items[0]
-        try:
-            spec = runner.specimen(r0["packing"], r0["radius_mm"], r0["seed"])
-        except (StudyError, OSError) as e:
-            for r in items:
-                failures.append((run_name(r), str(e)))
-                with runner.lock:
-                    done[0] += 1
-            runner.log(f"FAILED specimen {specimen_name(r0['packing'], r0['radius_mm'], r0['seed'])}: {e}")
-            return
-        for r in items:
-            poisson = None
-            if r["test"] == "bending":
-                poisson = poisson_for_bending(runner.out, r)
-                if poisson is None and r["packing"] == "cubic":
-                    poisson = 0.0
-            try:
-                status, secs = runner.run(spec, r, poisson)
-                msg = ""
-                if status == "ran":
-                    s = json.loads((runner.out / "runs" / run_name(r) / "summary.json").read_text())
-                    msg = f"{secs:.1f} s  {headline(r, s)}"
-                else:
-                    msg = "done before, skipped"
-            except (StudyError, OSError, ValueError) as e:
-                failures.append((run_name(r), str(e)))
-                msg = f"FAILED: {e}"
-            with runner.lock:
-                done[0] += 1
-                k = done[0]
-            el = time.time() - t_start
-            runner.log(f"[{k}/{total}] {run_name(r)}: {msg}  (elapsed {el:.0f} s)")
+    def report(name, message, error, when=None):
+        done[0] += 1
+        el = (when or time.time()) - t_start
+        runner.log(f"[{done[0]}/{total}] {name}: {message if error is None else 'FAILED: ' + error}"
+                   f"  (elapsed {el:.0f} s)")
 
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        list(pool.map(work, by_spec.values()))
+    failures = []
+    if jobs <= 1 or len(by_spec) == 1:
+        for items in by_spec.values():
+            failures += run_specimen(runner, items, report)
+        return failures
+    spawn = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(
+            max_workers=jobs, mp_context=spawn, initializer=start_worker,
+            initargs=(runner.exe, runner.out, runner.extra_sets)) as pool:
+        pending = {pool.submit(worker_specimen, items): items for items in by_spec.values()}
+        for future in concurrent.futures.as_completed(pending):
+            try:
+                reports, failed = future.result()
+            except concurrent.futures.process.BrokenProcessPool as e:
+                # a worker died (killed, or the library aborted): its runs have no summary.json
+                # and run again next time
+                reports = [(run_name(r), None, f"worker process died: {e}", None)
+                           for r in pending[future]]
+                failed = [(name, error) for name, _, error, _ in reports]
+            for name, message, error, when in reports:
+                report(name, message, error, when)
+            failures += failed
     return failures
 
 
@@ -511,8 +612,9 @@ def main(argv=None):
                     help="also TBBM bending at r < 3 mm (left out in the thesis' Table 1)")
     ap.add_argument("--jobs", type=int, default=1, help="specimens run in parallel (default 1)")
     ap.add_argument("--out", default="study", help="output folder (default ./study)")
-    ap.add_argument("--dembridge", default="", help="path of the dembridge executable "
-                    "(default $DEMBRIDGE, else build/app/dembridge)")
+    ap.add_argument("--dembridge", default="", help="the build to use, named by its dembridge "
+                    "executable: the runs go through that build's Python module (BUILD/python; "
+                    "default $DEMBRIDGE, else build/app/dembridge)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="extra override passed to every run (e.g. 'Simulation/threads=2')")
     ap.add_argument("--dry-run", action="store_true", help="list the runs and stop")
@@ -550,9 +652,10 @@ def main(argv=None):
         failures = []
         if not a.report_only:
             exe = find_dembridge(a.dembridge)
+            folder = module_folder(exe)
             runner = Runner(exe, out, extra_sets=a.set)
-            print(f"study: {len(runs)} runs into {out.resolve()} with {exe} ({a.jobs} job(s))",
-                  flush=True)
+            print(f"study: {len(runs)} runs into {out.resolve()} with the dembridge module in "
+                  f"{folder} ({a.jobs} job(s))", flush=True)
             t0 = time.time()
             failures = execute(runner, runs, a.jobs)
             print(f"study: finished in {time.time() - t0:.1f} s", flush=True)

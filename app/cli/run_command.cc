@@ -1,5 +1,6 @@
 #include "app/cli/run_command.h"
 #include "app/checkpoint/checkpoint.h"
+#include "app/cli/case_folder.h"
 #include "app/input/case_file.h"
 #include "app/job/provenance.h"
 #include "app/output/output_folder.h"
@@ -80,43 +81,6 @@ nlohmann::json run_mode(const MpiJob& job, dealii::ParameterHandler& prm, const 
 #endif
 }
 
-/// run_mode with the working directory at the case file's folder (paths inside the case, such
-/// as particle files and meshes, are relative to it); errors name the case file.
-nlohmann::json run_in_case_folder(const MpiJob& job, dealii::ParameterHandler& prm,
-                                  const std::string& case_file, const fs::path& abs_dir,
-                                  const CheckpointSettings& checkpoint,
-                                  nlohmann::json& memory_estimate)
-{
-  const fs::path cwd = fs::current_path();
-  fs::current_path(fs::absolute(case_file).parent_path());
-  nlohmann::json summary;
-  try
-  {
-    summary = run_mode(job, prm, abs_dir, checkpoint, memory_estimate);
-  }
-  catch (const dem::InputError& e)
-  {
-    // name the file: the message already names the key and the reason
-    fs::current_path(cwd);
-    throw std::runtime_error(fs::path(case_file).filename().string() + ": " + e.what());
-  }
-  catch (const std::runtime_error& e)
-  {
-    // FE input errors (std::runtime_error naming Section/key) name the file as DEM errors do
-    fs::current_path(cwd);
-    const std::string name = fs::path(case_file).filename().string();
-    const std::string what = e.what();
-    throw std::runtime_error(what.rfind(name, 0) == 0 ? what : name + ": " + what);
-  }
-  catch (...)
-  {
-    fs::current_path(cwd);
-    throw;
-  }
-  fs::current_path(cwd);
-  return summary;
-}
-
 /// Writes parameters.prm and summary.json (listing the run's files) into the staging folder.
 void write_results(const dealii::ParameterHandler& prm, const std::string& case_file,
                    const OutputFolder& folder, nlohmann::json& summary)
@@ -168,8 +132,10 @@ int run_case(const MpiJob& job, const RunOptions& o)
   // files of the run it continues.
   folder.stage(checkpoint.resume);
   nlohmann::json memory_estimate;
-  nlohmann::json summary =
-      run_in_case_folder(job, *prm, o.case_file, folder.staging(), checkpoint, memory_estimate);
+  // in the case's folder (paths inside the case are relative to it); errors name the case file
+  nlohmann::json summary = in_case_folder(
+      o.case_file,
+      [&] { return run_mode(job, *prm, folder.staging(), checkpoint, memory_estimate); });
   // a figure the run could not measure is named in "warnings", never a silent null
   flag_undefined_figures(summary, dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   summary["case"] = fs::path(o.case_file).filename().string();

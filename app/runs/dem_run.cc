@@ -4,75 +4,21 @@
 #include "app/output/contact_output.h"
 #include "app/output/crack_output.h"
 #include "app/output/dem_figures.h"
+#include "app/output/result_warnings.h"
 #include "app/runs/dem_observer.h"
 #include "app/runs/dem_run_ranks.h"
 #include "app/runs/dem_static_run.h"
 #include "dem/measurements/particle_stress.h"
 #include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
-#ifdef DEMBRIDGE_HAVE_FEM
-#include "fem/bond_network_solver.h"
-#endif
-#include "app/output/result_warnings.h"
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <optional>
 #include <vector>
 
 namespace dembridge::app
 {
 namespace
 {
-/// Simulation/static linear solver: auto = PETSc's GAMG from 150 k unknowns (where it starts to
-/// beat Jacobi CG, bench/RESULTS_STATIC.md), gamg = always, cg = never.
-dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
-{
-  dem::StaticSettings base;
-  const std::string linear = prm.get({"Simulation"}, "static linear solver");
-#ifdef DEMBRIDGE_HAVE_FEM
-  if (linear != "cg")
-    base.iterative_solver = fem::gamg_iterative_solver();
-  base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
-#else
-  if (linear == "gamg")
-    throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
-                          "dembridge was built without the fem layer (use auto or cg)");
-#endif
-  return base;
-}
-
-/// A static run in load steps (dem_static_run.h): its deflection and the solver's figures.
-dem::RunResult run_static_case(dealii::ParameterHandler& prm, dem::Model& model,
-                               const dem::CaseConfig& config, const OutputSettings& out,
-                               const std::filesystem::path& dir, nlohmann::json& j)
-{
-  const StaticRun run = run_static_load_steps(model, config, out, dir, static_solver_settings(prm));
-  const dem::StaticResult& st = run.last;
-  dem::RunResult r;
-  r.stop_reason = "static";
-  r.wall_seconds = run.seconds;
-  j["load_steps"] = run.load_steps;
-  if (!config.measure.deflection_group.empty())
-  {
-    const auto& g = model.groups[model.group_index(config.measure.deflection_group,
-                                                   "Measurements/deflection group")];
-    r.deflection_vector = dem::mean_displacement(model.particles, g);
-    r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
-  }
-  add_static_geometry(j, model);
-  add_bond_class_summary(j, model.particles, model.bonds);
-  j["solver"] = {{"type", "static"},
-                 {"method", st.method},
-                 {"iterations", st.iterations},
-                 {"residual", st.residual},
-                 {"n_free_dofs", st.n_free_dofs},
-                 {"held_unbonded_particles", st.held_unbonded},
-                 {"assembly_seconds", st.assembly_seconds},
-                 {"solve_seconds", st.solve_seconds}};
-  return r;
-}
-
 /// What an explicit run leaves for the figures measured on its final state.
 struct ExplicitCaseRun
 {
@@ -144,6 +90,7 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   ContactOutput(model).summary(j, r.time);
   return run;
 }
+
 /// A static run has no time steps: checkpoints and --resume are refused.
 void refuse_static_checkpoints(const dem::CaseConfig& config, const CheckpointSettings& checkpoint)
 {
@@ -152,31 +99,6 @@ void refuse_static_checkpoints(const dem::CaseConfig& config, const CheckpointSe
         std::string(checkpoint.resume ? "--resume" : "Output/checkpoint interval") +
         ": the static solver has no time steps to checkpoint (explicit runs "
         "only)");
-}
-
-double mean_coordination(const dem::ParticleStore& p)
-{
-  double mean = 0;
-  for (int c : p.coordination)
-    mean += c;
-  return mean / double(p.size());
-}
-
-/// The natural frequency of Measurements/frequency group; null with a warning when the group did
-/// not swing often enough to measure it.
-void add_natural_frequency(nlohmann::json& j, const dem::RunResult& r,
-                           const dem::MeasureConfig& measure)
-{
-  if (r.natural_frequency)
-    j["natural_frequency"] = *r.natural_frequency;
-  else if (!measure.frequency_group.empty())
-  {
-    j["natural_frequency"] = nullptr;
-    add_warning(j, "natural_frequency: undefined: group '" + measure.frequency_group +
-                       "' (Measurements/frequency group) did not swing through its mean at least "
-                       "three times in the run (a longer Simulation/end time, or less damping); "
-                       "written as null");
-  }
 }
 } // namespace
 
@@ -211,42 +133,15 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   // a static run records no load history and breaks no bond
   ExplicitCaseRun run;
   if (config.run.static_solver)
-    run.result = run_static_case(prm, model, config, out, dir, j);
+    run.result = add_static_run_figures(
+        j, model, config,
+        run_static_load_steps(model, config, out, dir, static_solver_settings(prm)));
   else
     run = run_explicit_case(model, config, out, dir, checkpoint, j);
-  const dem::RunResult& r = run.result;
-
-  // Particle stresses (thesis eq. 62), their histogram (Fig. 36) and slab averages (eq. 54).
   const dem::ParticleStresses stresses = dem::particle_stresses(model.particles, model.bonds);
-  const auto extent = dem::reference_extent(model.particles);
   write_particle_stresses(dir / "particle_stress.csv", model.particles, stresses);
-  const std::optional<dem::StressLayers> layers =
-      add_particle_stress_figures(j, model, config.measure, stresses, extent);
-  j["porosity"] = model.porosity;
-  j["packing_volume"] = model.packing_volume;
-
-  j["mode"] = "dem";
-  j["bond_model"] = prm.get({"Bonds"}, "model");
-  j["n_particles"] = model.particles.size();
-  j["n_bonds"] = model.bonds.size();
-  j["mean_coordination"] = mean_coordination(model.particles);
-  j["critical_time_step"] = model.critical.critical();
-  if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
-    j["critical_time_step_eq48"] = model.critical.thesis_eq48;
-  j["stop_reason"] = r.stop_reason;
-  j["solver_seconds"] = r.wall_seconds;
-  if (r.deflection)
-  {
-    j[config.measure.deflection_name] = *r.deflection;
-    j[config.measure.deflection_name + "_vector"] = to_json(r.deflection_vector);
-  }
-  const bool broke = !run.cracks.empty();
-  if (!config.measure.modulus_fixed_group.empty())
-    add_axial_figures(j, model, config.measure, stresses, extent, layers, run.history, broke);
-  if (!config.measure.flexural_groups.empty())
-    add_flexural_figures(j, model, config.measure, run.history, broke);
-  add_natural_frequency(j, r, config.measure);
-  add_group_figures(j, model);
+  add_final_state_figures(j, model, config, prm.get({"Bonds"}, "model"), run.result, stresses,
+                          run.history, !run.cracks.empty());
   return j;
 }
 } // namespace dembridge::app

@@ -1,11 +1,18 @@
 #include "app/runs/dem_static_run.h"
 #include "app/output/contact_output.h"
+#include "app/output/crack_output.h"
 #include "app/output/dem_history.h"
 #include "app/output/particle_vtu.h"
+#include "app/output/result_warnings.h"
 #include "dem/core/output_file.h"
 #include "dem/measurements/particle_stress.h"
+#ifdef DEMBRIDGE_HAVE_FEM
+#include "fem/bond_network_solver.h"
+#endif
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <optional>
 
 namespace dembridge::app
 {
@@ -22,6 +29,23 @@ std::vector<std::string> group_names(const dem::Model& model)
   for (std::size_t g = 0; g < model.groups.size() && g < 32; ++g)
     names.push_back(model.groups[g].name);
   return names;
+}
+
+// auto: GAMG from 150 k unknowns, where it starts to beat Jacobi CG (bench/RESULTS_STATIC.md)
+dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
+{
+  dem::StaticSettings base;
+  const std::string linear = prm.get({"Simulation"}, "static linear solver");
+#ifdef DEMBRIDGE_HAVE_FEM
+  if (linear != "cg")
+    base.iterative_solver = fem::gamg_iterative_solver();
+  base.iterative_solver_min_unknowns = linear == "auto" ? 150000 : 0;
+#else
+  if (linear == "gamg")
+    throw dem::InputError("Simulation/static linear solver: gamg needs PETSc, and this "
+                          "dembridge was built without the fem layer (use auto or cg)");
+#endif
+  return base;
 }
 
 namespace
@@ -50,20 +74,24 @@ double unbalanced_force_ratio(const dem::ParticleStore& p, const dem::BondStore&
 }
 } // namespace
 
-StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
-                                const OutputSettings& out, const std::filesystem::path& dir,
-                                const dem::StaticSettings& base)
+HistoryRecord static_step_record(const dem::Model& model, int k, double t)
 {
-  assign_group_masks(model);
+  HistoryRecord r;
+  r.step = k;
+  r.time = t;
+  r.energy.strain = dem::particle_stresses(model.particles, model.bonds).strain_energy;
+  r.energy.external = r.energy.strain; // Clapeyron: linear, loaded slowly from rest
+  r.unbalanced_force_ratio = unbalanced_force_ratio(model.particles, model.bonds);
+  return r;
+}
+
+StaticRun solve_static_load_steps(dem::Model& model, const dem::CaseConfig& config, int load_steps,
+                                  const dem::StaticSettings& base, const StaticStepDone& step_done)
+{
   StaticRun run;
-  run.load_steps = out.load_steps;
-  const int n = out.load_steps;
+  run.load_steps = load_steps;
+  const int n = load_steps;
   const double end = config.run.end_time;
-  const ContactOutput contacts(model);
-  const std::filesystem::path part = dir / "history.csv.part";
-  dem::OutputFile history(part); // failures name the file and the reason
-  history << history_header(model, contacts) << std::setprecision(10);
-  ParticleVtuSeries vtu(dir, group_names(model));
   for (int k = 1; k <= n; ++k)
   {
     dem::StaticSettings settings = base;
@@ -74,26 +102,130 @@ StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config
     run.seconds += st.assembly_seconds + st.solve_seconds;
     run.last = st;
     dem::record_bond_forces(model.particles, model.bonds);
+    if (step_done)
+      step_done(k, t, st);
+  }
+  return run;
+}
+
+StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
+                                const OutputSettings& out, const std::filesystem::path& dir,
+                                const dem::StaticSettings& base)
+{
+  assign_group_masks(model);
+  const int n = out.load_steps;
+  const ContactOutput contacts(model);
+  const std::filesystem::path part = dir / "history.csv.part";
+  dem::OutputFile history(part); // failures name the file and the reason
+  history << history_header(model, contacts) << std::setprecision(10);
+  ParticleVtuSeries vtu(dir, group_names(model));
+  const auto write_step = [&](int k, double t, const dem::StaticResult& st)
+  {
     std::printf("static load step %d/%d (t = %.4g s): %ld unknowns, %s, %ld iterations, %.3g s\n",
                 k, n, t, st.n_free_dofs, st.method.c_str(), st.iterations,
                 st.assembly_seconds + st.solve_seconds);
     std::fflush(stdout);
-    HistoryRecord r;
-    r.step = k;
-    r.time = t;
-    r.energy.strain = dem::particle_stresses(model.particles, model.bonds).strain_energy;
-    r.energy.external = r.energy.strain; // Clapeyron: linear, loaded slowly from rest
-    r.unbalanced_force_ratio = unbalanced_force_ratio(model.particles, model.bonds);
-    history_row(history, r, model.particles, model.groups, contacts);
+    history_row(history, static_step_record(model, k, t), model.particles, model.groups, contacts);
     const bool snapshot =
         k == 1 || k == n || (out.snapshot_interval > 0 && k % out.snapshot_interval == 0);
     if (out.write_vtu && snapshot)
       vtu.write(model.particles, model.bonds, t, k);
-  }
+  };
+  const StaticRun run = solve_static_load_steps(model, config, n, base, write_step);
   history.close();
   std::filesystem::rename(part, dir / "history.csv");
   if (out.write_vtu)
     vtu.finish();
   return run;
+}
+
+dem::RunResult add_static_run_figures(nlohmann::json& j, const dem::Model& model,
+                                      const dem::CaseConfig& config, const StaticRun& run)
+{
+  const dem::StaticResult& st = run.last;
+  dem::RunResult r;
+  r.stop_reason = "static";
+  r.wall_seconds = run.seconds;
+  j["load_steps"] = run.load_steps;
+  if (!config.measure.deflection_group.empty())
+  {
+    const auto& g = model.groups[model.group_index(config.measure.deflection_group,
+                                                   "Measurements/deflection group")];
+    r.deflection_vector = dem::mean_displacement(model.particles, g);
+    r.deflection = r.deflection_vector.dot(config.measure.deflection_direction.normalized());
+  }
+  add_static_geometry(j, model);
+  add_bond_class_summary(j, model.particles, model.bonds);
+  j["solver"] = {{"type", "static"},
+                 {"method", st.method},
+                 {"iterations", st.iterations},
+                 {"residual", st.residual},
+                 {"n_free_dofs", st.n_free_dofs},
+                 {"held_unbonded_particles", st.held_unbonded},
+                 {"assembly_seconds", st.assembly_seconds},
+                 {"solve_seconds", st.solve_seconds}};
+  return r;
+}
+
+namespace
+{
+double mean_coordination(const dem::ParticleStore& p)
+{
+  double mean = 0;
+  for (int c : p.coordination)
+    mean += c;
+  return mean / double(p.size());
+}
+
+/// The natural frequency of Measurements/frequency group; null with a warning when the group did
+/// not swing often enough to measure it.
+void add_natural_frequency(nlohmann::json& j, const dem::RunResult& r,
+                           const dem::MeasureConfig& measure)
+{
+  if (r.natural_frequency)
+    j["natural_frequency"] = *r.natural_frequency;
+  else if (!measure.frequency_group.empty())
+  {
+    j["natural_frequency"] = nullptr;
+    add_warning(j, "natural_frequency: undefined: group '" + measure.frequency_group +
+                       "' (Measurements/frequency group) did not swing through its mean at least "
+                       "three times in the run (a longer Simulation/end time, or less damping); "
+                       "written as null");
+  }
+}
+} // namespace
+
+void add_final_state_figures(nlohmann::json& j, const dem::Model& model,
+                             const dem::CaseConfig& config, const std::string& bond_model,
+                             const dem::RunResult& r, const dem::ParticleStresses& stresses,
+                             const LoadHistory& history, bool broke)
+{
+  // particle stresses (thesis eq. 62), their histogram (Fig. 36) and slab averages (eq. 54)
+  const auto extent = dem::reference_extent(model.particles);
+  const std::optional<dem::StressLayers> layers =
+      add_particle_stress_figures(j, model, config.measure, stresses, extent);
+  j["porosity"] = model.porosity;
+  j["packing_volume"] = model.packing_volume;
+  j["mode"] = "dem";
+  j["bond_model"] = bond_model;
+  j["n_particles"] = model.particles.size();
+  j["n_bonds"] = model.bonds.size();
+  j["mean_coordination"] = mean_coordination(model.particles);
+  j["critical_time_step"] = model.critical.critical();
+  if (std::isfinite(model.critical.thesis_eq48)) // eq. 48 bounds bonds: none without them
+    j["critical_time_step_eq48"] = model.critical.thesis_eq48;
+  j["stop_reason"] = r.stop_reason;
+  j["solver_seconds"] = r.wall_seconds;
+  if (r.deflection)
+  {
+    j[config.measure.deflection_name] = *r.deflection;
+    j[config.measure.deflection_name + "_vector"] = to_json(r.deflection_vector);
+  }
+  if (!config.measure.modulus_fixed_group.empty())
+    add_axial_figures(j, model, config.measure, stresses, extent, layers, history, broke);
+  if (!config.measure.flexural_groups.empty())
+    add_flexural_figures(j, model, config.measure, history, broke);
+  add_natural_frequency(j, r, config.measure);
+  add_group_figures(j, model);
 }
 } // namespace dembridge::app

@@ -6,11 +6,19 @@
 // columns (kinetic and damping energy zero; external work equal to the strain energy, as
 // Clapeyron's theorem has it for a linear system loaded slowly from rest) and, at the steps the
 // snapshot interval names (first and last by default), the ParaView files at t_k. The model ends
-// in the final state.
+// in the final state. The same solves without files (solve_static_load_steps) and the figures
+// of the final state serve the Python module's dembridge.Model, so that it gives the command
+// line's figures to the bit.
 #include "app/input/dem_parameters.h"
+#include "app/output/dem_figures.h"
+#include "app/output/dem_history.h"
 #include "dem/model/model.h"
+#include "dem/solvers/run_explicit.h"
 #include "dem/solvers/static_solver.h"
+#include <deal.II/base/parameter_handler.h>
 #include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
 
 namespace dembridge::app
 {
@@ -21,10 +29,43 @@ struct StaticRun
   int load_steps = 1;
 };
 
+/// Simulation/static linear solver as the settings every load step starts from: PETSc's GAMG
+/// for large systems where the build has the fem layer (auto), always (gamg) or never (cg).
+dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm);
+
+/// Called after each load step @p k (1..N) at load time @p t, the model in that step's
+/// equilibrium and its bond forces recorded.
+using StaticStepDone = std::function<void(int k, double t, const dem::StaticResult& step)>;
+
+/// The load steps' solves alone (no files): @p load_steps equilibria at t_k = k T / N, the last
+/// the final state, each starting from @p base.
+StaticRun solve_static_load_steps(dem::Model& model, const dem::CaseConfig& config, int load_steps,
+                                  const dem::StaticSettings& base,
+                                  const StaticStepDone& step_done = {});
+
 /// `base`: the solver settings every step starts from (Simulation/static linear solver).
 StaticRun run_static_load_steps(dem::Model& model, const dem::CaseConfig& config,
                                 const OutputSettings& out, const std::filesystem::path& dir,
                                 const dem::StaticSettings& base = {});
+
+/// history.csv's row of load step @p k at load time @p t, the model in that step's equilibrium
+/// (kinetic and damping energy zero, external work = strain energy: Clapeyron).
+HistoryRecord static_step_record(const dem::Model& model, int k, double t);
+
+/// summary.json's figures of a static run's solves: load steps, the deflection (returned in the
+/// result beside the stop reason and the solver time), the geometry, the bond classes and the
+/// solver's figures.
+dem::RunResult add_static_run_figures(nlohmann::json& j, const dem::Model& model,
+                                      const dem::CaseConfig& config, const StaticRun& run);
+
+/// summary.json's figures of a DEM run's final state, static or explicit: the particle stresses
+/// (@p stresses, of the model's current state), porosity, counts, time steps, the stop reason,
+/// the deflection, the uniaxial and bending tests' moduli (fitted to @p history when the specimen
+/// @p broke), the natural frequency and the groups.
+void add_final_state_figures(nlohmann::json& j, const dem::Model& model,
+                             const dem::CaseConfig& config, const std::string& bond_model,
+                             const dem::RunResult& result, const dem::ParticleStresses& stresses,
+                             const LoadHistory& history, bool broke);
 
 /// Sets every particle's group_mask bit g for the groups g < 32 it belongs to.
 void assign_group_masks(dem::Model& model);

@@ -39,16 +39,23 @@ std::optional<double> oscillation_frequency(const std::vector<double>& t,
   return double(crossings.size() - 1) / (crossings.back() - crossings.front());
 }
 
+std::unique_ptr<ExplicitSolver> make_explicit_solver(Model& model, const CaseConfig& c)
+{
+  auto solver = std::make_unique<ExplicitSolver>(
+      model.particles, model.bonds, model.groups, model.constraints, model.loads,
+      SolverSettings{model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping});
+  for (const auto& contribution : model.contributions)
+    solver->add_contribution(contribution.get());
+  return solver;
+}
+
 RunResult run_explicit(Model& model, const CaseConfig& c, RunObserver& observer,
                        const RunSchedule& sched)
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  ExplicitSolver solver(
-      model.particles, model.bonds, model.groups, model.constraints, model.loads,
-      {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping});
-  for (const auto& contribution : model.contributions)
-    solver.add_contribution(contribution.get());
+  const std::unique_ptr<ExplicitSolver> solver_owner = make_explicit_solver(model, c);
+  ExplicitSolver& solver = *solver_owner;
   RunResult res;
   const int deflection_group =
       c.measure.deflection_group.empty()

@@ -5,6 +5,7 @@
 #include "dem/model/case_config.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -65,6 +66,11 @@ struct RunResult
   Vec3 deflection_vector = Vec3::Zero();
   std::optional<double> natural_frequency; ///< Hz
 };
+
+/// The explicit solver of @p model as the case configures it (time step, damping, threads), with
+/// the model's step contributions (contacts, walls, ...) attached: what run_explicit steps, and
+/// what a caller that steps the model itself (the Python module) steps.
+std::unique_ptr<ExplicitSolver> make_explicit_solver(Model& model, const CaseConfig& config);
 
 RunResult run_explicit(Model& model, const CaseConfig& config, RunObserver& observer,
                        const RunSchedule& schedule);

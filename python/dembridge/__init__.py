@@ -1,4 +1,4 @@
-"""dembridge from Python: run cases, read their results, step DEM models.
+"""dembridge from Python: run cases, read their results, step and solve DEM models.
 
     import dembridge
     run = dembridge.run("examples/cantilever.prm", output_dir="out/c",
@@ -10,12 +10,17 @@
     model.step(100)
     model.positions                      # (N, 3) view of the model's own arrays
 
+    model = dembridge.Model("examples/compression_hcp.prm", set={"Bonds/stiffness ratio": 3})
+    model.solve_static()                 # the command line's static solver
+    model.figures()["youngs_modulus"]    # summary.json's figures of the model's state
+
 A case is a .prm or .json file, or a dict in the form of summary.json's `parameters`
 ({"Mode": "dem", "Particles": {"radius": 0.01, ...}}). `set` overrides keys as the command
 line's --set does. Errors are the command line's one-line messages, raised as
 dembridge.CaseError (a ValueError) naming the file and the key.
 """
 import csv
+import io
 import json
 import os
 import tempfile
@@ -84,7 +89,12 @@ def _json_value(value):
 def read_history(path):
     """history.csv (or any of our CSV files) as {column: NumPy array}."""
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+        return _columns(f)
+
+
+def _columns(lines):
+    """CSV lines as {column: NumPy array} (numbers where every value is one)."""
+    rows = list(csv.reader(lines))
     if not rows:
         return {}
     header, data = rows[0], rows[1:]
@@ -143,9 +153,14 @@ def check(case, set=None):  # noqa: A002
 
 
 class Model(_Model):
-    """A DEM case built as `dembridge run` builds it, to step from Python.
+    """A DEM case built as `dembridge run` builds it, to step or solve from Python.
 
-    Model(case, set=None); step(n); run(); arrays: positions, reference_positions,
+    Model(case, set=None); step(n): explicit time steps; solve_static(time=None): one solve of
+    the command line's static solver (the loads at `time`, None: the final state), its solver
+    figures as a dict; run(): the case to its end as `dembridge run` runs it, static or
+    explicit, without files; figures(): summary.json's figures of the current state (after
+    run(), the command line's to the bit, an explicit run's fits to its load history aside).
+    A model is stepped, or solved, or run; history: run()'s history.csv as arrays. Arrays: positions, reference_positions,
     displacements, velocities, angular_velocities, forces, torques, radii, masses, ids,
     bond_ends, bond_states, bond_damage, bond_forces; stresses() (N, 3, 3) in Pa. The arrays
     other than displacements, bond_ends and stresses() are read-only views of the model's
@@ -154,3 +169,9 @@ class Model(_Model):
     def __init__(self, case, set=None):  # noqa: A002
         with _CaseFile(case) as path:
             super().__init__(path, overrides(set))
+
+    @property
+    def history(self):
+        """history.csv's columns of run() as {column: array} (one row per record of an explicit
+        run, per load step of a static one); empty before run()."""
+        return _columns(io.StringIO(self.history_text)) if self.history_text else {}
