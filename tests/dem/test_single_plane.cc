@@ -53,6 +53,11 @@ CaseConfig specimen(const Vec3& box, const Vec3& normal)
   c.damage.law.shear = ShearCriterion::mohr_coulomb;
   c.damage.friction_angle = 30;
   c.damage.law.tan_friction = std::tan(30 * deg);
+  if (const char* g = getenv("SOFT"))
+  {
+    c.damage.law.mode = FailureMode::softening;
+    c.damage.law.fracture_energy_I = c.damage.law.fracture_energy_II = atof(g);
+  }
   c.damage.tensile_strength = 8e6;
   c.damage.cohesion = 8e6;
   if (normal.squaredNorm() > 0)
@@ -66,6 +71,8 @@ CaseConfig specimen(const Vec3& box, const Vec3& normal)
     weak.cohesion = 1e6;
     c.microstructure.weak_plane = weak;
     c.microstructure.smooth_joint = true;
+    if (const char* mu = getenv("MUJ"))
+      c.microstructure.joint_friction = atof(mu);
   }
   c.contacts.model = ContactModel::linear;
   c.contacts.normal_stiffness = 2e7;
