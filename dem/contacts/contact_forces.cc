@@ -1,7 +1,7 @@
 #include "dem/contacts/contact_forces.h"
 #include "dem/bonds/bond_store.h"
-#include "dem/contacts/joint_contact.h"
 #include "dem/contacts/contact_kernel.h"
+#include "dem/contacts/joint_contact.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -285,9 +285,20 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
       return;
     }
     const bool was_open = kt_[k] == 0.0;
-    const JointContactOutput out =
-        joint_contact_force(*pair_law, n, u_n, v[j] - v[i], r[i] * r[j] / (r[i] + r[j]),
-                            m[i] * m[j] / (m[i] + m[j]), joints->friction, dt, xi_[k], kt_[k]);
+    const double mu_j = joints->friction, m_eff = m[i] * m[j] / (m[i] + m[j]);
+    JointContactOutput out;
+    if (bond >= 0) // a broken bond's springs, and its shear handed over (eq. 8)
+    {
+      const auto b = std::size_t(bond);
+      const LinearSpringDashpot springs{bonds_->kn[b], bonds_->ks[b], 0.0};
+      if (was_open)
+        xi_[k] =
+            joint_shear_handover(n, x[i], x[j], X[i], X[j], springs.kt, mu_j, springs.kn * u_n);
+      out = joint_contact_force(springs, n, u_n, v[j] - v[i], 0.0, m_eff, mu_j, dt, xi_[k], kt_[k]);
+    }
+    else
+      out = joint_contact_force(*pair_law, n, u_n, v[j] - v[i], r[i] * r[j] / (r[i] + r[j]), m_eff,
+                                mu_j, dt, xi_[k], kt_[k]);
     F[j] += out.force;
     F[i] -= out.force;
     if (!book)

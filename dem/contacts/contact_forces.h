@@ -7,11 +7,12 @@
 //      the last build; the springs of the contacts that persist are carried over;
 //   2. every listed pair without an intact bond (never bonded, or broken: BondStore::state) whose
 //      spheres overlap, and every sphere that overlaps a wall, gets the contact force of the
-//      chosen law; a pair across a smooth joint's plane (BondStore::sliding_joints) gets the
-//      unbonded joint's force instead (joint_contact.h: along the plane's normal, sliding on
-//      it with the joint's friction), never the spheres' (its spring is the pair's history); (contact_kernel.h: linear_spring_dashpot.h or hertz_mindlin.h, with Coulomb
-//      friction and optional rolling resistance). The law is a template parameter chosen once
-//      per step: no virtual call and no branch on the law per contact.
+//      chosen law (contact_kernel.h: linear_spring_dashpot.h or hertz_mindlin.h, with Coulomb
+//      friction and optional rolling resistance); a pair across a smooth joint's plane
+//      (BondStore::sliding_joints) gets the unbonded joint's force instead (joint_contact.h:
+//      along the plane's normal, sliding on it with the joint's friction), never the spheres'
+//      (its spring is the pair's history). The law is a template parameter chosen once per
+//      step: no virtual call and no branch on the law per contact.
 // Energy (dem/core/energy.h), booked so that the leapfrog balance closes:
 //   contact_strain   springs' stored energy at x^n (recording steps);
 //   friction         slip of the tangential and rolling springs (tangential_spring.h);
