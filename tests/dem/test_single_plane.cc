@@ -5,7 +5,9 @@
 // is below the intact strength; the least strength is at beta = 45 + phi_w / 2 degrees, and the
 // plane cannot slip for beta <= phi_w (the denominator's sign).
 // On a random packing (r = 1.5 mm) whose weak-plane bonds are smooth joints
-// (bonds/smooth_joint.h) an eighth as strong as the rest (Mohr-Coulomb, 30 degrees), and whose
+// (bonds/smooth_joint.h) an eighth as strong as the rest (Mohr-Coulomb, 30 degrees) and a tenth
+// as stiff (a joint more compliant than the rock around it: its own compliance then sets how
+// its bonds share the load, not the packing's force chains next to it), and whose
 // pairs across the plane slide on it once their bonds break (contacts/joint_contact.h, with the
 // bonds' own friction, mu_j = tan 30: the plane loses its cohesion when it breaks and keeps its
 // friction, the plane Jaeger's theory describes):
@@ -38,7 +40,8 @@ using dembridge::test::face_group;
 
 /// A random packing of @p box with strong bonds, brittle, Mohr-Coulomb, and one weak plane of
 /// normal @p normal through the box's centre (none for a zero normal), its bonds smooth joints
-/// an eighth as strong, sliding joints once broken; linear frictional contacts elsewhere.
+/// an eighth as strong and a tenth as stiff, sliding joints once broken; linear frictional
+/// contacts elsewhere.
 CaseConfig specimen(const Vec3& box, const Vec3& normal)
 {
   CaseConfig c;
@@ -67,6 +70,7 @@ CaseConfig specimen(const Vec3& box, const Vec3& normal)
     BondClassConfig weak = BondClassConfig::of_specimen(c.bonds.material, c.damage);
     weak.tensile_strength = 1e6;
     weak.cohesion = 1e6;
+    weak.material.youngs_modulus = 0.1 * c.bonds.material.youngs_modulus;
     c.microstructure.weak_plane = weak;
     c.microstructure.smooth_joint = true;
     c.microstructure.joint_friction = std::tan(30 * deg);
@@ -139,9 +143,10 @@ double direct_shear(double sigma_n)
   upper.selection.box_max = Vec3(1, 1, 1);
   c.groups = {lower, upper, face_group("x+", 0, true, 0)};
   const double area = box.y() * box.z(), duration = 3e-3;
-  LoadConfig shear = load("upper", "shear", LoadKind::displacement, Vec3(0, 2e-5, 0), area);
+  LoadConfig shear = load("upper", "shear", LoadKind::displacement, Vec3(0, 1e-4, 0), area);
   shear.load.components = 2;
-  shear.load.ramp_time = duration; // linear: a constant sliding rate
+  shear.load.ramp_time = duration;
+  shear.load.profile = RampProfile::smooth; // no jump in velocity at the start
   LoadConfig normal = load("x+", "normal", LoadKind::pressure, Vec3(-1, 0, 0), area);
   normal.load.pressure = sigma_n;
   normal.load.ramp_time = 0.2e-3;
