@@ -102,6 +102,15 @@ void declare_microstructure_parameters(ParameterHandler& prm)
           "strength or cohesion against the shear stress), carrying no couple; so the plane's "
           "stiffness and strength do not depend on how particles sit across it. false: the "
           "bonds follow the bond law along their own axes, as the other classes.");
+    if (std::string(section) == "Bond class weak_plane")
+      prm.declare_entry(
+          "joint friction", "0.5", Double(0),
+          "With smooth joint: the Coulomb friction coefficient mu_j (dimensionless, >= 0) of the "
+          "plane once its bonds break. A pair of particles on the plane's two sides whose bond "
+          "is broken, or that has none, meets as an unbonded smooth joint (PFC's, YADE JCFpm's): "
+          "the contact law's normal force on the approach along the plane's normal, compression "
+          "only, and a shear spring in the plane capped at mu_j times that force, so the two "
+          "sides slide on the plane and never ride up over one another as spheres would.");
     prm.leave_subsection();
   }
 }
@@ -185,6 +194,8 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     cls.shear_strength = value("shear strength", cls.shear_strength);
     cls.cohesion = value("cohesion", cls.cohesion);
     const bool smooth = k == 1 && prm.get_bool("smooth joint");
+    if (k == 1)
+      c.joint_friction = prm.get_double("joint friction");
     prm.leave_subsection();
     if (smooth && !has_class[k])
       throw dem::InputError(section +

@@ -7,6 +7,7 @@
 #include "dem/bonds/bond_class.h"
 #include "dem/bonds/bond_damage.h"
 #include "dem/bonds/bond_model.h"
+#include "dem/bonds/sliding_joints.h"
 #include <optional>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct BondStore
   /// With a value N (unit), the weak-plane bonds are smooth joints across planes of normal N
   /// (bonds/smooth_joint.h); unset: every bond follows the unified law (bond_kernel.h).
   std::optional<Vec3> smooth_joint_normal;
+  /// With a value, the pairs across the smooth joints' planes meet as unbonded joints once
+  /// their bond is broken or where they have none (contacts/joint_contact.h): the planes and
+  /// the joints' friction. Unset: they meet as spheres (contacts/contact_kernel.h).
+  std::optional<SlidingJoints> sliding_joints;
   // Last recorded contact-point force and couple acting on particle b (global frame); filled
   // on recording steps only (the static run's figures, a coupled run's band check, the tests
   // of the force loop), not on every step. 48 of the 154 bytes of a bond: explicit full-DEM

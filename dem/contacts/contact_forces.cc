@@ -1,6 +1,7 @@
 #include "dem/contacts/contact_forces.h"
 #include "dem/bonds/bond_store.h"
 #include "dem/contacts/contact_kernel.h"
+#include "dem/contacts/joint_contact.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -61,6 +62,13 @@ void ContactForces::attach(const ParticleStore& p, const BondStore& bonds)
     const auto a = std::size_t(bonds.a[k]), b = std::size_t(bonds.b[k]);
     bond_partner_[std::size_t(fill[a])] = bonds.b[k], bond_index_[std::size_t(fill[a]++)] = int(k);
     bond_partner_[std::size_t(fill[b])] = bonds.a[k], bond_index_[std::size_t(fill[b]++)] = int(k);
+  }
+  joint_side_.clear();
+  if (bonds.sliding_joints)
+  {
+    joint_side_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      joint_side_[i] = bonds.sliding_joints->side(p.reference_position[i]);
   }
   if (!(list_.skin() > 0)) // else fixed over the whole model (fix_skin)
     fix_skin(p);
@@ -260,6 +268,51 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     monitor_.last_overlap = delta;
   };
 
+  // a pair across a sliding joint's plane: the unbonded joint (joint_contact.h)
+  const SlidingJoints* joints = joint_side_.empty() ? nullptr : &*bonds_->sliding_joints;
+  const Vec3* X = p.reference_position.data();
+  auto joint_pair = [&](std::size_t k, std::size_t i, std::size_t j, std::int32_t bond, bool book)
+  {
+    const Vec3 n = joint_side_[i] < joint_side_[j] ? joints->normal : Vec3(-joints->normal);
+    double reach = r[i] + r[j];
+    if (bond >= 0)
+      reach = std::max(reach, bonds_->rest_length[std::size_t(bond)]);
+    const double u_n = joint_approach(n, x[i], x[j], X[i], X[j]); // eq. (2)
+    if ((x[j] - x[i]).squaredNorm() >= reach * reach || !(u_n > 0))
+    {
+      if (kt_[k] > 0) // the joint has just opened: its spring goes
+        xi_[k].setZero(), kt_[k] = 0;
+      return;
+    }
+    const bool was_open = kt_[k] == 0.0;
+    const double mu_j = joints->friction, m_eff = m[i] * m[j] / (m[i] + m[j]);
+    JointContactOutput out;
+    if (bond >= 0) // a broken bond's springs, and its shear handed over (eq. 8)
+    {
+      const auto b = std::size_t(bond);
+      const LinearSpringDashpot springs{bonds_->kn[b], bonds_->ks[b], 0.0};
+      if (was_open)
+        xi_[k] =
+            joint_shear_handover(n, x[i], x[j], X[i], X[j], springs.kt, mu_j, springs.kn * u_n);
+      out = joint_contact_force(springs, n, u_n, v[j] - v[i], 0.0, m_eff, mu_j, dt, xi_[k], kt_[k]);
+    }
+    else
+      out = joint_contact_force(*pair_law, n, u_n, v[j] - v[i], r[i] * r[j] / (r[i] + r[j]), m_eff,
+                                mu_j, dt, xi_[k], kt_[k]);
+    F[j] += out.force;
+    F[i] -= out.force;
+    if (!book)
+      return;
+    if (bond >= 0 && was_open) // as a broken bond's sphere contact below
+      activation += out.energy - 0.5 * dt * out.power;
+    ++active;
+    slip += out.slip;
+    if constexpr (record)
+      stored += out.energy;
+    if (monitor_.enabled)
+      note(false, std::int32_t(i), std::int32_t(j), u_n, out.normal_force, (v[j] - v[i]).dot(n));
+  };
+
   const std::size_t np = list_.size();
   for (std::size_t k = 0; k < np; ++k)
   {
@@ -270,6 +323,11 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     if (global_id_ && (*global_id_)[i] > (*global_id_)[j]) // the same on every rank
       std::swap(i, j);
     const bool book = i < owned_; // on the rank that owns the lower id
+    if (joints && pair_joint_[k])
+    {
+      joint_pair(k, i, j, bond, book);
+      continue;
+    }
     const Vec3 d = x[j] - x[i];
     const double dist2 = d.squaredNorm(), reach = r[i] + r[j];
     if (dist2 >= reach * reach || dist2 == 0.0)

@@ -8,8 +8,11 @@
 //   2. every listed pair without an intact bond (never bonded, or broken: BondStore::state) whose
 //      spheres overlap, and every sphere that overlaps a wall, gets the contact force of the
 //      chosen law (contact_kernel.h: linear_spring_dashpot.h or hertz_mindlin.h, with Coulomb
-//      friction and optional rolling resistance). The law is a template parameter chosen once
-//      per step: no virtual call and no branch on the law per contact.
+//      friction and optional rolling resistance); a pair across a smooth joint's plane
+//      (BondStore::sliding_joints) gets the unbonded joint's force instead (joint_contact.h:
+//      along the plane's normal, sliding on it with the joint's friction), never the spheres'
+//      (its spring is the pair's history). The law is a template parameter chosen once per
+//      step: no virtual call and no branch on the law per contact.
 // Energy (dem/core/energy.h), booked so that the leapfrog balance closes:
 //   contact_strain   springs' stored energy at x^n (recording steps);
 //   friction         slip of the tangential and rolling springs (tangential_spring.h);
@@ -113,7 +116,8 @@ private:
   /// After a list build following distribute(): the new pairs and wall contacts take their
   /// history from the records given there.
   void take_distributed_history();
-  /// The bond joining each listed pair (pair_bond_), from the bonds of each particle.
+  /// The bond joining each listed pair (pair_bond_), from the bonds of each particle, and
+  /// whether the pair lies across a sliding joint's plane (pair_joint_).
   void link_pairs_to_bonds();
 
   ContactConfig material_;
@@ -137,6 +141,8 @@ private:
   // the contact history
   NeighbourList list_;
   std::vector<std::int32_t> pair_bond_;
+  std::vector<std::uint8_t> pair_joint_; ///< 1: across a sliding joint (empty without joints)
+  std::vector<long> joint_side_;         ///< per particle: SlidingJoints::side at X (or empty)
   std::vector<Vec3> xi_, theta_, xi_old_, theta_old_;
   std::vector<double> kt_, kr_, kt_old_, kr_old_; ///< spring stiffnesses at the last step; 0: apart
 

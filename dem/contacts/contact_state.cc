@@ -38,6 +38,10 @@ void ContactForces::link_pairs_to_bonds()
         bond = bond_index_[std::size_t(q)];
     pair_bond_[k] = bond;
   }
+  pair_joint_.assign(joint_side_.empty() ? 0 : first.size(), 0);
+  for (std::size_t k = 0; k < pair_joint_.size(); ++k)
+    pair_joint_[k] =
+        joint_side_[std::size_t(first[k])] != joint_side_[std::size_t(second[k])] ? 1 : 0;
 }
 
 void ContactForces::visit_state(StateArchive& a)

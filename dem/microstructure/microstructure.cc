@@ -90,7 +90,11 @@ apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig&
     check_weak_planes(*planes, 2 * mean_radius, "Microstructure/");
     crossing.assign(planes->offsets.size(), 0);
     if (config.smooth_joint)
+    {
       b.smooth_joint_normal = planes->normal; // unit (check_weak_planes)
+      b.sliding_joints =
+          SlidingJoints{planes->normal, planes->offsets, planes->spacing, config.joint_friction};
+    }
   }
   b.bond_class.assign(nb, BondClass::intra_grain);
   for (std::size_t k = 0; k < nb; ++k)

@@ -50,6 +50,9 @@ struct MicrostructureConfig
   std::optional<BondClassConfig> grain_boundary, weak_plane;
   /// The weak-plane bonds are smooth joints (bonds/smooth_joint.h) across the planes.
   bool smooth_joint = false;
+  /// With smooth_joint: mu_j of the pairs across the planes once unbonded
+  /// (contacts/joint_contact.h).
+  double joint_friction = 0.5;
 
   bool enabled() const { return grains.enabled || weak_planes.has_value(); }
 };

@@ -129,6 +129,7 @@ std::vector<std::size_t> visit_bonds(StateArchive& a, BondStore& b)
   }
   stored.failure = b.failure;
   stored.smooth_joint_normal = b.smooth_joint_normal; // the case's, as the failure law
+  stored.sliding_joints = b.sliding_joints;
   if (!b.records_forces())
     stored.drop_force_records();
   stored.reorder(order);
