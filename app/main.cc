@@ -17,7 +17,6 @@
 #include "app/job/version.h"
 #include "app/studies/elasticity_command.h"
 #include "app/studies/verify.h"
-#include "dem/core/progress.h"
 #ifdef DEMBRIDGE_HAVE_COUPLING
 #include "app/studies/compare.h"
 #endif
@@ -32,12 +31,7 @@ int main(int argc, char** argv)
   // under mpirun: rank 0 alone prints; an error ends the whole job (mpi_job.h)
   const app::MpiJob job(MPI_COMM_WORLD);
   app::set_command_line(argc, argv);
-  // long phases without an observer (random packing) report here (dem/core/progress.h)
-  dembridge::dem::progress_sink() = [root = job.root()](const std::string& line)
-  {
-    if (root)
-      std::cout << line << std::endl;
-  };
+  job.print_progress_on_root();
   CLI::App cli{"dembridge: coupled DEM-FEM for bonded-particle models"};
   cli.require_subcommand(1);
   cli.set_version_flag("--version",

@@ -1,6 +1,8 @@
 #include "app/job/mpi_job.h"
+#include "dem/core/progress.h"
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <stdexcept>
 #include <thread>
 
@@ -18,6 +20,15 @@ MpiJob::~MpiJob()
 {
   if (failures_ != MPI_COMM_NULL)
     MPI_Comm_free(&failures_);
+}
+
+void MpiJob::print_progress_on_root() const
+{
+  dem::progress_sink() = [root = root()](const std::string& line)
+  {
+    if (root)
+      std::cout << line << std::endl;
+  };
 }
 
 void MpiJob::require_one_rank(const std::string& what, const std::string& why) const

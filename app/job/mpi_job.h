@@ -30,6 +30,10 @@ public:
   /// Rank 0 alone prints to the terminal.
   bool root() const { return rank_ == 0; }
 
+  /// Progress lines of long phases that have no observer of their own (random packing:
+  /// dem/core/progress.h) go to rank 0's standard output.
+  void print_progress_on_root() const;
+
   /// Throws std::runtime_error "@p what runs on one MPI rank (@p why), this job has N; ..." when
   /// the job has more than one rank. The same on every rank, so they fail together.
   void require_one_rank(const std::string& what, const std::string& why) const;
