@@ -39,6 +39,35 @@ double number_or(ParameterHandler& prm, const std::string& section, const std::s
   throw dem::InputError(section + "/" + key + ": '" + text +
                         "' is not a number (leave it empty for the Bonds or Damage value)");
 }
+
+/// The weak-plane class's joint friction (in its section), or @p fallback when it is empty; set
+/// while @p smooth (its smooth joint) is false, it is refused: nothing would read it.
+double joint_friction(ParameterHandler& prm, const std::string& section, bool smooth,
+                      double fallback)
+{
+  const std::string key = "joint friction", text = prm.get(key);
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    return fallback;
+  double v = 0;
+  std::size_t used = 0;
+  try
+  {
+    v = std::stod(text, &used);
+  }
+  catch (const std::exception&)
+  {
+    used = 0;
+  }
+  if (used == 0 || text.find_first_not_of(" \t", used) != std::string::npos)
+    throw dem::InputError(section + "/" + key + ": '" + text + "' is not a number");
+  if (!(v >= 0))
+    throw dem::InputError(section + "/" + key + ": must not be negative (got " + text + ")");
+  if (!smooth)
+    throw dem::InputError(section + "/" + key + ": set, but " + section +
+                          "/smooth joint is false: only smooth joints slide on the plane with "
+                          "this friction (set smooth joint = true, or leave it empty)");
+  return v;
+}
 } // namespace
 
 void declare_microstructure_parameters(ParameterHandler& prm)
@@ -104,9 +133,11 @@ void declare_microstructure_parameters(ParameterHandler& prm)
           "bonds follow the bond law along their own axes, as the other classes.");
     if (std::string(section) == "Bond class weak_plane")
       prm.declare_entry(
-          "joint friction", "0.5", Double(0),
+          "joint friction", "", Anything(),
           "With smooth joint: the Coulomb friction coefficient mu_j (dimensionless, >= 0) of the "
-          "plane once its bonds break. A pair of particles on the plane's two sides whose bond "
+          "plane once its bonds break; empty: 0.5. Only smooth joints slide on the plane, so a "
+          "value set while smooth joint is false is refused. A pair of particles on the plane's "
+          "two sides whose bond "
           "is broken, or that has none, meets as an unbonded smooth joint (PFC's, YADE JCFpm's): "
           "the contact law's normal force on the approach along the plane's normal, compression "
           "only, and a shear spring in the plane capped at mu_j times that force, so the two "
@@ -195,7 +226,7 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     cls.cohesion = value("cohesion", cls.cohesion);
     const bool smooth = k == 1 && prm.get_bool("smooth joint");
     if (k == 1)
-      c.joint_friction = prm.get_double("joint friction");
+      c.joint_friction = joint_friction(prm, section, smooth, c.joint_friction);
     prm.leave_subsection();
     if (smooth && !has_class[k])
       throw dem::InputError(section +

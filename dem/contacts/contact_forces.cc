@@ -268,45 +268,83 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
     monitor_.last_overlap = delta;
   };
 
-  // a pair across a sliding joint's plane: the unbonded joint (joint_contact.h)
+  // a pair across a sliding joint's plane: the unbonded joint (joint_contact.h). kt_ < 0 marks
+  // a pair apart that has had its chance of a bond's hand-over (eq. 8 there) or never had a
+  // bond; theta_ (a joint turns no particle: no rolling spring) holds u_0 n, the approach the
+  // joint's springs start from (eq. 8b)
   const SlidingJoints* joints = joint_side_.empty() ? nullptr : &*bonds_->sliding_joints;
   const Vec3* X = p.reference_position.data();
+  double joint_friction = 0;
   auto joint_pair = [&](std::size_t k, std::size_t i, std::size_t j, std::int32_t bond, bool book)
   {
     const Vec3 n = joint_side_[i] < joint_side_[j] ? joints->normal : Vec3(-joints->normal);
     double reach = r[i] + r[j];
     if (bond >= 0)
       reach = std::max(reach, bonds_->rest_length[std::size_t(bond)]);
-    const double u_n = joint_approach(n, x[i], x[j], X[i], X[j]); // eq. (2)
+    const double mu_j = joints->friction, m_eff = m[i] * m[j] / (m[i] + m[j]);
+    const double r_eff = bond >= 0 ? 0.0 : r[i] * r[j] / (r[i] + r[j]);
+    // the joint's springs: a broken bond's, or the contact law's
+    auto with_springs = [&](auto&& act)
+    {
+      if (bond >= 0)
+        return act(
+            LinearSpringDashpot{bonds_->kn[std::size_t(bond)], bonds_->ks[std::size_t(bond)], 0.0});
+      return act(*pair_law);
+    };
+    const double u_0 = theta_[k].dot(n);
+    double u_n = joint_approach(n, x[i], x[j], X[i], X[j]) - u_0; // eq. (2)
     if ((x[j] - x[i]).squaredNorm() >= reach * reach || !(u_n > 0))
     {
-      if (kt_[k] > 0) // the joint has just opened: its spring goes
-        xi_[k].setZero(), kt_[k] = 0;
+      if (kt_[k] > 0 && book) // the joint has just opened or left reach: what it held goes
+      {
+        const double u_before =
+            joint_approach(n, x[i] - dt * v[i], x[j] - dt * v[j], X[i], X[j]) - u_0;
+        joint_friction += with_springs(
+            [&](const auto& law) {
+              return joint_release(law, n, u_before, v[j] - v[i], r_eff, m_eff, dt, xi_[k], kt_[k]);
+            });
+      }
+      if (kt_[k] >= 0)
+        xi_[k].setZero(), kt_[k] = -1;
       return;
     }
-    const bool was_open = kt_[k] == 0.0;
-    const double mu_j = joints->friction, m_eff = m[i] * m[j] / (m[i] + m[j]);
-    JointContactOutput out;
-    if (bond >= 0) // a broken bond's springs, and its shear handed over (eq. 8)
+    const bool hand_over = bond >= 0 && kt_[k] == 0.0, was_open = !(kt_[k] > 0);
+    if (was_open)
+      kt_[k] = 0;
+    if (hand_over) // at the pair's first step after its bond broke: eq. (8), (8b)
     {
       const auto b = std::size_t(bond);
-      const LinearSpringDashpot springs{bonds_->kn[b], bonds_->ks[b], 0.0};
-      if (was_open)
-        xi_[k] =
-            joint_shear_handover(n, x[i], x[j], X[i], X[j], springs.kt, mu_j, springs.kn * u_n);
-      out = joint_contact_force(springs, n, u_n, v[j] - v[i], 0.0, m_eff, mu_j, dt, xi_[k], kt_[k]);
+      const double kn = bonds_->kn[b], ks = bonds_->ks[b];
+      const double released = bonds_->dissipated.empty() ? 0.0 : bonds_->dissipated[b];
+      const double u_start = joint_start_approach(u_n, released, kn, ks, mu_j);
+      theta_[k] = (u_n - u_start) * n;
+      u_n = u_start;
+      if (!(u_n > 0)) // nothing to hand over: apart from now on
+      {
+        kt_[k] = -1;
+        return;
+      }
+      xi_[k] = joint_shear_handover(n, x[i], x[j], X[i], X[j], ks, mu_j, kn * u_n);
     }
-    else
-      out = joint_contact_force(*pair_law, n, u_n, v[j] - v[i], r[i] * r[j] / (r[i] + r[j]), m_eff,
-                                mu_j, dt, xi_[k], kt_[k]);
+    const JointContactOutput out = with_springs(
+        [&](const auto& law) {
+          return joint_contact_force(law, n, u_n, v[j] - v[i], r_eff, m_eff, mu_j, dt, xi_[k],
+                                     kt_[k]);
+        });
     F[j] += out.force;
     F[i] -= out.force;
     if (!book)
       return;
-    if (bond >= 0 && was_open) // as a broken bond's sphere contact below
-      activation += out.energy - 0.5 * dt * out.power;
+    if (was_open) // the energy it starts with, in the solver's time-centred form
+    {
+      const double start = out.energy - 0.5 * dt * out.power;
+      if (hand_over) // taken from the fracture energy, as a broken bond's sphere contact below
+        activation += start;
+      else // a pair coming within reach of a compressed plane (joint_contact.h)
+        joint_friction -= start;
+    }
     ++active;
-    slip += out.slip;
+    joint_friction += out.slip;
     if constexpr (record)
       stored += out.energy;
     if (monitor_.enabled)
@@ -415,7 +453,8 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
            (v[i] - v_wall).dot(n));
   }
 
-  slip_ += slip;
+  slip_ += slip + joint_friction;
+  joint_friction_ += joint_friction;
   activation_ += activation;
   damping_work_ += 0.5 * dt * dissipation; // the half with v^{n-1/2}
   if constexpr (record)

@@ -15,7 +15,8 @@
 //      step: no virtual call and no branch on the law per contact.
 // Energy (dem/core/energy.h), booked so that the leapfrog balance closes:
 //   contact_strain   springs' stored energy at x^n (recording steps);
-//   friction         slip of the tangential and rolling springs (tangential_spring.h);
+//   friction         slip of the tangential and rolling springs (tangential_spring.h), and a
+//                    sliding joint's springs as they leave or come within reach (joint_contact.h);
 //   contact_damping  dashpot work d^n . (v^{n-1/2} + v^{n+1/2}) / 2 dt, as the bond dashpots;
 //   wall_work        work of the moving walls, 1/2 (F^{n-1} + F^n) . (u_w^n - u_w^{n-1}), F the
 //                    walls' force on the particles;
@@ -94,6 +95,10 @@ public:
   /// Stored energy of the contacts that a broken bond handed over already overlapping, at their
   /// first step (J): energy the break did not release.
   double activation_energy() const { return activation_; }
+  /// The sliding joints' share of the friction term since this object was built (J): their
+  /// slip, and the energy their springs hold on leaving reach less what they hold on coming
+  /// within it (joint_contact.h).
+  double joint_friction() const { return joint_friction_; }
   /// Measures the stress-strain curve between walls `lower` and `upper` (facing each other) on
   /// a specimen of cross-section `area` (m^2); InputError names Contacts/platens.
   void measure_platens(int lower, int upper, double area);
@@ -160,7 +165,7 @@ private:
 
   // energy
   double stored_ = 0, slip_ = 0, damping_work_ = 0, damping_lead_ = 0, wall_work_ = 0;
-  double activation_ = 0;
+  double activation_ = 0, joint_friction_ = 0;
   mutable double activation_booked_ = 0; ///< part of activation_ already moved out of fracture
 
   ContactMonitor monitor_;

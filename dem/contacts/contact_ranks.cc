@@ -76,7 +76,7 @@ void ContactForces::export_history(std::vector<double>& out) const
   const auto& first = list_.first();
   const auto& second = list_.second();
   for (std::size_t k = 0; k < first.size(); ++k)
-    if (kt_[k] > 0 || kr_[k] > 0) // touching (apart: no history)
+    if (kt_[k] != 0 || kr_[k] > 0) // touching, or a joint's pair apart after its hand-over
     {
       const auto key = pair_key(ids[std::size_t(first[k])], ids[std::size_t(second[k])]);
       put(key[0], key[1], xi_[k], theta_[k], kt_[k], kr_[k]);
