@@ -4,6 +4,7 @@
 #include "app/input/group_load_parameters.h"
 #include "app/input/microstructure_parameters.h"
 #include "app/input/parameter_values.h"
+#include "app/input/specimen_volume.h"
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -75,6 +76,12 @@ void declare_particles_section(ParameterHandler& prm)
                     "A notch: particles whose centres lie in the box [remove box min, remove box "
                     "max] (m) are removed before bonding; both 0: none.");
   prm.declare_entry("remove box max", "0, 0, 0", vector3, "Upper corner of the remove box (m).");
+  prm.declare_entry("specimen volume", "", Anything(),
+                    "A specimen of any shape (a cylindrical core): a gmsh volume mesh (.msh, "
+                    "relative to the case file, or by name from the build's meshes folder). The "
+                    "packing (cubic, hcp, fcc, random) fills the volume's bounding box instead of "
+                    "'origin' and 'box size'; the spheres wholly inside the volume (centre inside, "
+                    "at least 'radius' from its surface) are kept. Empty: the box.");
   prm.leave_subsection();
 }
 
@@ -282,6 +289,14 @@ void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
         throw dem::InputError("Particles/file: '" + s.file + "' does not exist (looked for " +
                               tried.string() + ")");
     }
+    if (const std::string volume = prm.get("specimen volume"); !volume.empty())
+#ifdef DEMBRIDGE_HAVE_COUPLING
+      apply_specimen_volume(s, volume);
+#else
+      throw dem::InputError("Particles/specimen volume: '" + volume +
+                            "': this build has no gmsh reader (built without deal.II's FE "
+                            "layers); leave the key empty for the box");
+#endif
   }
   prm.leave_subsection();
 }
