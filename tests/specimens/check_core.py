@@ -5,18 +5,19 @@
         The simple cubic core. The lattice fills the core's bounding box (read from the mesh's
         nodes) exactly as the lattice generator does; the columns whose spheres lie wholly inside
         the cylinder (axis distance <= R - r) are counted here, independently of the code, with
-        a margin of at least r / 5 between every column and that limit (so the facets of the
-        meshed circle, which stand 0.03 r inside it, cannot change the count). Checks:
+        every column kept at least r / 5 inside that limit (so the facets of the meshed circle,
+        which stand 0.03 r inside it, cannot drop one). Checks:
           n_particles = columns x layers, exactly;
           E over the lattice cells (columns x (2r)^2) = pi E_b / 4 within 1e-6 (the columns
             carry the load independently; the box specimen's closed form, tests/app checks the
             box to the same 1e-6);
           E over the nominal area pi R^2 against the box's pi E_b / 4: in the ratio of the
             core's solid fraction to the box's, within 1e-6.
-    check_core.py fill SUMMARY.json CORE.msh RADIUS TOL
-        Any packing (HCP, random): the core holds as many spheres as the box packing's number
-        density (summary.json's porosity is the box's) puts in the region where a whole
-        sphere's centre may lie (radius R - r, height H - 2r), within relative TOL; and every
+    check_core.py fill SUMMARY.json CORE.msh RADIUS TOL [SOLID_FRACTION]
+        Any packing (HCP, random): the core holds as many spheres as the packing's number
+        density (SOLID_FRACTION / sphere volume; by default the box packing's, 1 - summary.json's
+        porosity) puts in the region where a whole sphere's centre may lie (radius R - r,
+        height H - 2r), within relative TOL; and every
         sphere lies within the cylinder: the particles' bounding square (radii included,
         summary's cross_section_area) is at most (2R)^2.
 
@@ -72,15 +73,18 @@ def check_cubic(summary, msh, r, e_b):
     lo, hi, centre, R, H = cylinder(msh)
     nx, ny, nz = (axis_count(lo[d], hi[d], r) for d in range(3))
     columns = 0
-    margin = math.inf
+    margin = math.inf  # of the columns kept, inside the limit R - r
     for i in range(nx):
         for j in range(ny):
             rho = math.hypot(lo[0] + r + 2 * r * i - centre[0], lo[1] + r + 2 * r * j - centre[1])
-            margin = min(margin, abs(rho - (R - r)))
-            columns += rho <= R - r
-    print(f"core: R = {R:.6g} m, H = {H:.6g} m, {columns} columns of {nz} spheres, "
-          f"closest column {margin:.3g} m from the limit R - r")
-    check(margin >= r / 5, f"every column at least r/5 from the limit R - r ({margin:.3g} m)")
+            if rho <= R - r:
+                columns += 1
+                margin = min(margin, R - r - rho)
+    print(f"core: R = {R:.6g} m, H = {H:.6g} m, {columns} columns of {nz} spheres, the outermost "
+          f"kept {margin:.3g} m inside the limit R - r")
+    # the facets stand inside the circle (their vertices lie on it): they can only drop a column
+    # that is kept here, and only one closer to the limit than they stand in (0.03 r)
+    check(margin >= r / 5, f"every kept column at least r/5 inside the limit R - r")
     check(summary["n_particles"] == columns * nz,
           f"n_particles {summary['n_particles']} = {columns} x {nz}")
     force_over_strain = summary["youngs_modulus"] * summary["cross_section_area"]
@@ -96,25 +100,28 @@ def check_cubic(summary, msh, r, e_b):
          "E over pi R^2 / E_box = core / box solid fraction")
 
 
-def check_fill(summary, msh, r, tol):
+def check_fill(summary, msh, r, tol, solid=None):
     lo, hi, centre, R, H = cylinder(msh)
-    density = (1 - summary["porosity"]) / (4 / 3 * math.pi * r**3)  # spheres per m^3, the box's
+    solid = 1 - summary["porosity"] if solid is None else solid
+    print(f"solid fraction of the packing: {solid:.6g}")
+    density = solid / (4 / 3 * math.pi * r**3)  # spheres per m^3
     expected = density * math.pi * (R - r) ** 2 * (H - 2 * r)
     n = summary["n_particles"]
     print(f"core: R = {R:.6g} m, H = {H:.6g} m; box porosity {summary['porosity']:.6g}")
-    near(n, expected, tol, "spheres in the core vs the box's density x the centres' region")
+    near(n, expected, tol, "spheres in the core vs the packing's density x the centres' region")
     area = summary["cross_section_area"]
     check(area <= (2 * R) ** 2 * (1 + 1e-9),
           f"particles' bounding square {area:.6g} m^2 <= (2R)^2 = {(2 * R) ** 2:.6g} m^2")
 
 
 def main():
-    if len(sys.argv) != 6 or sys.argv[1] not in ("cubic", "fill"):
+    mode = sys.argv[1] if len(sys.argv) > 1 else ""
+    if not (mode == "cubic" and len(sys.argv) == 6 or mode == "fill" and len(sys.argv) in (6, 7)):
         sys.exit(__doc__)
     with open(sys.argv[2]) as f:
         summary = json.load(f)
-    values = (summary, sys.argv[3], float(sys.argv[4]), float(sys.argv[5]))
-    (check_cubic if sys.argv[1] == "cubic" else check_fill)(*values)
+    values = (summary, sys.argv[3], *(float(v) for v in sys.argv[4:]))
+    (check_cubic if mode == "cubic" else check_fill)(*values)
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)
