@@ -245,10 +245,25 @@ void declare_dem_parameters(ParameterHandler& prm)
 
 namespace
 {
+/// Mode = coupled: its particles are cut by Coupling/particle region file, which would replace
+/// a specimen volume's cut. Mode is declared with the whole case (declare_all_parameters).
+bool coupled_mode(ParameterHandler& prm)
+{
+  try
+  {
+    return prm.get("Mode") == "coupled";
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
 /// Particles: the source of the spheres; a file source must name a file that exists.
 void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
 {
   using K = dem::ParticleSource::Kind;
+  const bool coupled = coupled_mode(prm);
   prm.enter_subsection("Particles");
   {
     auto& s = c.particles;
@@ -291,7 +306,13 @@ void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
     }
     if (const std::string volume = prm.get("specimen volume"); !volume.empty())
 #ifdef DEMBRIDGE_HAVE_COUPLING
+    {
+      if (coupled)
+        throw dem::InputError("Particles/specimen volume: '" + volume +
+                              "': a coupled run's particles fill Coupling/particle region file "
+                              "(Mode = coupled); leave the key empty");
       apply_specimen_volume(s, volume);
+    }
 #else
       throw dem::InputError("Particles/specimen volume: '" + volume +
                             "': this build has no gmsh reader (built without deal.II's FE "
