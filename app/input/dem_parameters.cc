@@ -263,7 +263,7 @@ bool coupled_mode(ParameterHandler& prm)
 void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
 {
   using K = dem::ParticleSource::Kind;
-  const bool coupled = coupled_mode(prm);
+  [[maybe_unused]] const bool coupled = coupled_mode(prm); // unused without the gmsh reader
   prm.enter_subsection("Particles");
   {
     auto& s = c.particles;
