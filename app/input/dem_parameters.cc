@@ -4,6 +4,7 @@
 #include "app/input/group_load_parameters.h"
 #include "app/input/microstructure_parameters.h"
 #include "app/input/parameter_values.h"
+#include "app/input/specimen_volume.h"
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -75,6 +76,12 @@ void declare_particles_section(ParameterHandler& prm)
                     "A notch: particles whose centres lie in the box [remove box min, remove box "
                     "max] (m) are removed before bonding; both 0: none.");
   prm.declare_entry("remove box max", "0, 0, 0", vector3, "Upper corner of the remove box (m).");
+  prm.declare_entry("specimen volume", "", Anything(),
+                    "A specimen of any shape (a cylindrical core): a gmsh volume mesh (.msh, "
+                    "relative to the case file, or by name from the build's meshes folder). The "
+                    "packing (cubic, hcp, fcc, random) fills the volume's bounding box instead of "
+                    "'origin' and 'box size'; the spheres wholly inside the volume (centre inside, "
+                    "at least 'radius' from its surface) are kept. Empty: the box.");
   prm.leave_subsection();
 }
 
@@ -238,10 +245,25 @@ void declare_dem_parameters(ParameterHandler& prm)
 
 namespace
 {
+/// Mode = coupled: its particles are cut by Coupling/particle region file, which would replace
+/// a specimen volume's cut. Mode is declared with the whole case (declare_all_parameters).
+bool coupled_mode(ParameterHandler& prm)
+{
+  try
+  {
+    return prm.get("Mode") == "coupled";
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
 /// Particles: the source of the spheres; a file source must name a file that exists.
 void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
 {
   using K = dem::ParticleSource::Kind;
+  [[maybe_unused]] const bool coupled = coupled_mode(prm); // unused without the gmsh reader
   prm.enter_subsection("Particles");
   {
     auto& s = c.particles;
@@ -282,6 +304,20 @@ void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
         throw dem::InputError("Particles/file: '" + s.file + "' does not exist (looked for " +
                               tried.string() + ")");
     }
+    if (const std::string volume = prm.get("specimen volume"); !volume.empty())
+#ifdef DEMBRIDGE_HAVE_COUPLING
+    {
+      if (coupled)
+        throw dem::InputError("Particles/specimen volume: '" + volume +
+                              "': a coupled run's particles fill Coupling/particle region file "
+                              "(Mode = coupled); leave the key empty");
+      apply_specimen_volume(s, volume);
+    }
+#else
+      throw dem::InputError("Particles/specimen volume: '" + volume +
+                            "': this build has no gmsh reader (built without deal.II's FE "
+                            "layers); leave the key empty for the box");
+#endif
   }
   prm.leave_subsection();
 }

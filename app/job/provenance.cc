@@ -31,7 +31,8 @@ std::string short_prm(const dealii::ParameterHandler& prm)
 bool is_path_entry(const std::vector<std::string>& sections, const std::string& key)
 {
   const std::vector<std::string> particles{"Particles"}, mesh{"FEM", "Mesh"}, coupling{"Coupling"};
-  return (sections == particles && (key == "file" || key == "save file")) ||
+  return (sections == particles &&
+          (key == "file" || key == "save file" || key == "specimen volume")) ||
          (sections == mesh && key == "file") ||
          (sections == coupling && (key == "tensor file" || key == "particle region file"));
 }
