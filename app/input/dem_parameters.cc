@@ -311,7 +311,7 @@ void parse_particles_section(ParameterHandler& prm, dem::CaseConfig& c)
         throw dem::InputError("Particles/specimen volume: '" + volume +
                               "': a coupled run's particles fill Coupling/particle region file "
                               "(Mode = coupled); leave the key empty");
-      apply_specimen_volume(s, volume);
+      c.measure.section_area = apply_specimen_volume(s, volume);
     }
 #else
       throw dem::InputError("Particles/specimen volume: '" + volume +

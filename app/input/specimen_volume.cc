@@ -54,7 +54,7 @@ void check_lattice_keeps_a_sphere(const dem::ParticleSource& source, const std::
 }
 } // namespace
 
-void apply_specimen_volume(dem::ParticleSource& source, const std::string& file)
+dem::Vec3 apply_specimen_volume(dem::ParticleSource& source, const std::string& file)
 {
   using K = dem::ParticleSource::Kind;
   if (source.kind == K::row || source.kind == K::file)
@@ -85,5 +85,10 @@ void apply_specimen_volume(dem::ParticleSource& source, const std::string& file)
   source.keep = [volume, surface, clearance](const dem::Vec3& x)
   { return volume->contains(x) && surface->distance(x) >= clearance; };
   check_lattice_keeps_a_sphere(source, file);
+  // the cross-section normal to each axis: the volume over its length along the axis
+  dem::Vec3 section_area;
+  for (int d = 0; d < 3; ++d)
+    section_area[d] = volume->volume() / source.box_size[d];
+  return section_area;
 }
 } // namespace dembridge::app

@@ -20,6 +20,7 @@ namespace dembridge::app
 /// bounding box and keep the spheres inside it. Throws dem::InputError naming
 /// Particles/specimen volume and the file when the file is missing or unreadable, when the
 /// volume is thinner than two particle diameters along an axis, or (lattices) when no whole
-/// sphere of the lattice fits inside.
-void apply_specimen_volume(dem::ParticleSource& source, const std::string& file);
+/// sphere of the lattice fits inside. Returns the specimen's cross-section normal to each axis,
+/// m^2: the volume over its length along the axis.
+dem::Vec3 apply_specimen_volume(dem::ParticleSource& source, const std::string& file);
 } // namespace dembridge::app

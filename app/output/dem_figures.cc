@@ -230,7 +230,7 @@ void add_axial_figures(nlohmann::json& j, const dem::Model& model, const dem::Me
       model.particles,
       model.groups[model.group_index(m.modulus_fixed_group, "Measurements/modulus groups")],
       model.groups[model.group_index(m.modulus_loaded_group, "Measurements/modulus groups")],
-      m.modulus_axis);
+      m.modulus_axis, m.section_area[m.modulus_axis]);
   add_axial_response(j, a, broke);
   add_fitted_modulus(j, a, history, broke);
   add_rve_figures(j, model, a, stresses, extent, layers);

@@ -98,7 +98,8 @@ ElasticSample ElasticProbe::measure(double ratio_parameter, double modulus_param
   ++solves_;
   const auto a =
       dem::axial_response(p, model_.groups[std::size_t(fixed_group_)],
-                          model_.groups[std::size_t(loaded_group_)], config_.measure.modulus_axis);
+                          model_.groups[std::size_t(loaded_group_)], config_.measure.modulus_axis,
+                          config_.measure.section_area[config_.measure.modulus_axis]);
   ElasticSample s;
   s.ratio_parameter = ratio_parameter;
   s.modulus_parameter = modulus_parameter;

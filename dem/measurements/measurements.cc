@@ -51,7 +51,7 @@ double lateral_strain(const ParticleStore& p, const Group& low, const Group& hig
 } // namespace
 
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
-                             const Group& loaded_end, int axis)
+                             const Group& loaded_end, int axis, double section_area)
 {
   AxialResponse r;
   r.axis = axis;
@@ -61,6 +61,8 @@ AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
   for (int d = 0; d < 3; ++d)
     if (d != axis)
       r.area *= extent[d];
+  if (section_area > 0)
+    r.area = section_area;
   const double dx =
       reference_centroid(p, loaded_end)[axis] - reference_centroid(p, fixed_end)[axis];
   r.gauge_length = std::abs(dx);

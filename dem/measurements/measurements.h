@@ -1,7 +1,8 @@
 #pragma once
 // Specimen measurements from particle displacements and support reactions (thesis section 4.3):
 //  - axial stress  sigma = F / A, with F the reaction of the loaded end group along the axis and
-//    A the specimen cross-section (extent of the particles, radii included, across the axis);
+//    A the specimen cross-section (extent of the particles, radii included, across the axis, or
+//    the given section area of a specimen that is not a box, e.g. a cylindrical core);
 //  - axial strain  eps = (mean u of the loaded end - mean u of the fixed end) / distance of the
 //    two end groups' reference centroids (the gauge length between the end particles);
 //  - Young's modulus E = sigma / eps (thesis eq. 64 for a single load level);
@@ -28,8 +29,9 @@ struct AxialResponse
   bool force_controlled = false;       ///< the load was read from the fixed end's reaction
 };
 
+/// @p section_area: the cross-section A in m^2 where it is not the particles' extent; 0: the extent.
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
-                             const Group& loaded_end, int axis);
+                             const Group& loaded_end, int axis, double section_area = 0);
 
 /// Thesis eq. 64 with F/dL from the force-displacement curve: the least-squares slope (with
 /// intercept, so a constant offset does not bias it) of the loaded end's axial force over the

@@ -109,6 +109,10 @@ struct MeasureConfig
   int stress_layers = 0;                      ///< slabs of the specimen for eq. 54 averages
   int stress_layer_axis = 2;                  ///< slab normal
   int stress_histogram_bins = 20;             ///< particle stress histogram (Fig. 36)
+  /// m^2, per axis: the specimen's cross-section normal to it where the particles' bounding box
+  /// is not the specimen (Particles/specimen volume: the volume over its length along the axis,
+  /// exact for a prism such as a core along its axis); 0: the bounding box.
+  Vec3 section_area = Vec3::Zero();
 };
 
 struct CaseConfig
