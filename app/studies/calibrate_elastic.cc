@@ -96,10 +96,9 @@ ElasticSample ElasticProbe::measure(double ratio_parameter, double modulus_param
   }
   const dem::StaticResult st = dem::solve_static(model_);
   ++solves_;
-  const auto a =
-      dem::axial_response(p, model_.groups[std::size_t(fixed_group_)],
-                          model_.groups[std::size_t(loaded_group_)], config_.measure.modulus_axis,
-                          config_.measure.section_area[config_.measure.modulus_axis]);
+  const auto a = dem::axial_response(
+      p, model_.groups[std::size_t(fixed_group_)], model_.groups[std::size_t(loaded_group_)],
+      config_.measure.modulus_axis, config_.measure.section_area[config_.measure.modulus_axis]);
   ElasticSample s;
   s.ratio_parameter = ratio_parameter;
   s.modulus_parameter = modulus_parameter;

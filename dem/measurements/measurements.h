@@ -29,7 +29,8 @@ struct AxialResponse
   bool force_controlled = false;       ///< the load was read from the fixed end's reaction
 };
 
-/// @p section_area: the cross-section A in m^2 where it is not the particles' extent; 0: the extent.
+/// @p section_area: the cross-section A in m^2 where it is not the particles' extent; 0: the
+/// extent.
 AxialResponse axial_response(const ParticleStore& p, const Group& fixed_end,
                              const Group& loaded_end, int axis, double section_area = 0);
 
