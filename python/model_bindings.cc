@@ -3,6 +3,7 @@
 #include "app/input/case_file.h"
 #include "app/input/dem_parameters.h"
 #include "app/output/contact_output.h"
+#include "app/output/dem_figures.h"
 #include "app/output/dem_history.h"
 #include "app/output/result_warnings.h"
 #include "app/runs/dem_static_run.h"
@@ -225,13 +226,7 @@ private:
     j["time_step"] = model_.time_step;
     j["steps"] = r.steps;
     j["simulated_time"] = r.time;
-    j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
-                   {"damping", r.energy.damping},     {"external_work", r.energy.external},
-                   {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
-                   {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
-                   {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
-    j["energy_balance_error"] = r.energy_balance_error;
-    j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+    app::add_energy_figures(j, r);
     return r;
   }
 

@@ -300,4 +300,15 @@ void add_group_figures(nlohmann::json& j, const dem::Model& model)
     groups[g.name]["force"] = to_json(dem::total_force(model.particles, g));
   }
 }
+
+void add_energy_figures(nlohmann::json& j, const dem::RunResult& r)
+{
+  j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
+                 {"damping", r.energy.damping},     {"external_work", r.energy.external},
+                 {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
+                 {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
+                 {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
+  j["energy_balance_error"] = r.energy_balance_error;
+  j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+}
 } // namespace dembridge::app

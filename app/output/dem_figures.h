@@ -7,6 +7,7 @@
 // undefined (result_warnings.h).
 #include "dem/measurements/particle_stress.h"
 #include "dem/model/model.h"
+#include "dem/solvers/run_explicit.h"
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -64,4 +65,8 @@ void add_flexural_figures(nlohmann::json& j, const dem::Model& model, const dem:
 
 /// groups: each group's size, mean displacement and total force.
 void add_group_figures(nlohmann::json& j, const dem::Model& model);
+
+/// An explicit run's energies (`energy`: each term, J), `energy_balance_error` and
+/// `unbalanced_force_ratio`.
+void add_energy_figures(nlohmann::json& j, const dem::RunResult& r);
 } // namespace dembridge::app

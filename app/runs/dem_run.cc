@@ -80,13 +80,7 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   j["simulated_time"] = r.time;
   j["bond_updates_per_second"] =
       r.wall_seconds > 0 ? double(r.steps_made) * double(model.bonds.size()) / r.wall_seconds : 0.0;
-  j["energy"] = {{"kinetic", r.energy.kinetic},     {"strain", r.energy.strain},
-                 {"damping", r.energy.damping},     {"external_work", r.energy.external},
-                 {"fracture", r.energy.fracture},   {"contact_strain", r.energy.contact_strain},
-                 {"friction", r.energy.friction},   {"contact_damping", r.energy.contact_damping},
-                 {"wall_work", r.energy.wall_work}, {"initial", r.energy.initial}};
-  j["energy_balance_error"] = r.energy_balance_error;
-  j["unbalanced_force_ratio"] = r.unbalanced_force_ratio;
+  add_energy_figures(j, r);
   ContactOutput(model).summary(j, r.time);
   return run;
 }

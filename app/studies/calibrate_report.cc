@@ -3,10 +3,8 @@
 #include "app/studies/verify_report.h"
 #include "dem/core/output_file.h"
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace dembridge::app::calibrate_detail
 {
@@ -248,49 +246,15 @@ fig.suptitle(title)
 fig.tight_layout()
 fig.savefig(png, dpi=110)
 )PY";
-
-std::string last_line(const fs::path& file)
-{
-  std::ifstream in(file);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty())
-      last = line;
-  return last;
-}
 } // namespace
 
 json write_plot(const fs::path& dir)
 {
-  using verify_detail::python;
-  using verify_detail::shell_quote;
-  json status = {{"file", nullptr}};
-  const fs::path script = dir / "calibration_plot.py", log = dir / "calibration_plot.log";
-  const fs::path png_tmp = dir / "calibration.part.png";
+  const fs::path script = dir / "calibration_plot.py";
   write_text_atomically(dir, script.filename().string(),
                         std::string("# Written by `dembridge calibrate`; usage: python3 "
                                     "calibration_plot.py calibration.json PNG\n") +
                             plot_script);
-  const std::string command = shell_quote(python()) + " " + shell_quote(script.string()) + " " +
-                              shell_quote((dir / "calibration.json").string()) + " " +
-                              shell_quote(png_tmp.string()) + " > " + shell_quote(log.string()) +
-                              " 2>&1";
-  const int code = std::system(command.c_str());
-  const int rc = WIFEXITED(code) ? WEXITSTATUS(code) : code;
-  if (rc == 0 && fs::is_regular_file(png_tmp))
-  {
-    fs::rename(png_tmp, dir / "calibration.png");
-    fs::remove(log);
-    status["file"] = "calibration.png";
-  }
-  else
-  {
-    fs::remove(png_tmp);
-    const std::string why = last_line(log);
-    status["error"] = python() + " failed (exit " + std::to_string(rc) +
-                      (why.empty() ? std::string(")") : "): " + why) + "; see " +
-                      log.filename().string();
-  }
-  return status;
+  return verify_detail::run_plot_script(script, dir / "calibration.json", dir / "calibration.png");
 }
 } // namespace dembridge::app::calibrate_detail

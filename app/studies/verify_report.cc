@@ -105,6 +105,36 @@ std::string shell_quote(const std::string& s)
   return q + "'";
 }
 
+json run_plot_script(const fs::path& script, const fs::path& input, const fs::path& png,
+                     const std::vector<std::string>& extra)
+{
+  const fs::path log = fs::path(script).replace_extension(".log");
+  const fs::path png_tmp = fs::path(png).replace_extension(".part.png");
+  std::string command = shell_quote(python()) + " " + shell_quote(script.string()) + " " +
+                        shell_quote(input.string()) + " " + shell_quote(png_tmp.string());
+  for (const std::string& arg : extra)
+    command += " " + shell_quote(arg);
+  command += " > " + shell_quote(log.string()) + " 2>&1";
+  const int code = std::system(command.c_str());
+  const int rc = WIFEXITED(code) ? WEXITSTATUS(code) : code;
+  json status = {{"file", nullptr}};
+  if (rc == 0 && fs::is_regular_file(png_tmp))
+  {
+    fs::rename(png_tmp, png);
+    fs::remove(log);
+    status["file"] = png.filename().string();
+  }
+  else
+  {
+    fs::remove(png_tmp);
+    const std::string why = last_line(log);
+    status["error"] = python() + " failed (exit " + std::to_string(rc) +
+                      (why.empty() ? std::string(")") : "): " + why) + "; see " +
+                      log.filename().string();
+  }
+  return status;
+}
+
 json row_json(const Row& row)
 {
   json j;
@@ -152,8 +182,8 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
         const json j = row_json(row);
         const bool layer = row.position.has_value();
         out << (layer ? "layer" : "scalar") << ',' << row.key << ',' << row.unit << ','
-            << (layer ? report.layer_axis : "") << ',' << (layer ? csv_number(*row.position) : "") << ','
-            << cell(j["dem"]) << ',' << cell(j["fem"]) << ',' << cell(j["difference"]) << ','
+            << (layer ? report.layer_axis : "") << ',' << (layer ? csv_number(*row.position) : "")
+            << ',' << cell(j["dem"]) << ',' << cell(j["fem"]) << ',' << cell(j["difference"]) << ','
             << cell(j["relative_difference"]) << '\n';
       }
     out.close();
@@ -166,35 +196,15 @@ json write_table_and_plot(const Report& report, const fs::path& dir, const std::
     status["error"] = "disabled (--no-plot)";
     return status;
   }
-  const fs::path script = dir / "comparison_plot.py", log = dir / "comparison_plot.log";
-  const fs::path png_tmp = dir / "comparison.part.png";
+  const fs::path script = dir / "comparison_plot.py";
   {
     std::ofstream out(script);
     out << "# Written by `dembridge verify`; usage: python3 comparison_plot.py CSV PNG TITLE\n"
         << plot_script;
   }
-  const std::string command = shell_quote(python()) + " " + shell_quote(script.string()) + " " +
-                              shell_quote(csv.string()) + " " + shell_quote(png_tmp.string()) +
-                              " " + shell_quote(title) + " > " + shell_quote(log.string()) +
-                              " 2>&1";
-  const int status_code = std::system(command.c_str());
-  const int rc = WIFEXITED(status_code) ? WEXITSTATUS(status_code) : status_code;
-  if (rc == 0 && fs::is_regular_file(png_tmp))
-  {
-    fs::rename(png_tmp, dir / "comparison.png");
-    fs::remove(log);
-    status["file"] = "comparison.png";
-  }
-  else
-  {
-    fs::remove(png_tmp);
-    const std::string why = last_line(log);
-    status["error"] = python() + " failed (exit " + std::to_string(rc) +
-                      (why.empty() ? std::string(")") : "): " + why) + "; see " +
-                      log.filename().string();
-  }
-  return status;
+  return run_plot_script(script, csv, dir / "comparison.png", {title});
 }
+
 std::string num(double v)
 {
   std::ostringstream s;

@@ -43,6 +43,14 @@ std::string python();
 /// @p s single-quoted for a POSIX shell.
 std::string shell_quote(const std::string& s);
 
+/// Runs `python() SCRIPT INPUT PNG.part.png EXTRA...` (its output in SCRIPT's .log beside it) and
+/// moves the picture to @p png when the script succeeds. Returns the plot status for
+/// summary.json: {"file": PNG's name} or {"file": null, "error": the interpreter's exit code and
+/// last line, and the log's name}.
+nlohmann::json run_plot_script(const std::filesystem::path& script,
+                               const std::filesystem::path& input, const std::filesystem::path& png,
+                               const std::vector<std::string>& extra = {});
+
 /// Round-trip text of a double (17 significant digits).
 std::string num(double v);
 
