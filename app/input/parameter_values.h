@@ -34,20 +34,16 @@ inline double get_end_time(dealii::ParameterHandler& prm, const std::string& whe
   const std::string end = prm.get("end time");
   if (end == "inf" || end == "never")
     return std::numeric_limits<double>::infinity();
-  // stod alone would take "1e-3x" as 1e-3: the whole entry must be the number.
-  std::size_t used = 0;
-  double value = 0;
   try
   {
-    value = std::stod(end, &used);
+    // the strict reader: the whole entry must be the one number ("1e-3x" is not)
+    if (const auto value = dem::parse_numbers(end, where + "/end time"); value.size() == 1)
+      return value[0];
   }
   catch (const std::exception&)
   {
-    used = 0;
   }
-  if (used == 0 || end.find_first_not_of(" \t", used) != std::string::npos)
-    throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
-  return value;
+  throw dem::InputError(where + "/end time: '" + end + "' is neither 'inf' nor a number");
 }
 
 /// The names listed in `SECTION/names` (Groups, Loads, Walls), in their order: each names a
