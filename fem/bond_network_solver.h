@@ -15,10 +15,14 @@
 // aggregates hold whole particles. Jacobi CG needs O(h^-1) iterations (about 1,000 at 25 k
 // particles); with this space the iteration count stays nearly flat as the network grows.
 //
-// PETSc must be initialised (deal.II's Utilities::MPI::MPI_InitFinalize does it); the solve is
-// serial (PETSC_COMM_SELF), as the static solver is.
+// PETSc must be initialised (deal.II's Utilities::MPI::MPI_InitFinalize does it). The solve is
+// serial (MPI_COMM_SELF) or shared by the ranks of GamgSettings::communicator: every rank holds
+// the same system (the assembly is replicated) and inserts only its own rows of a parallel AIJ
+// matrix, whole particles in contiguous ranges; CG and GAMG run on the ranks together and every
+// rank gets the whole solution back.
 #include "dem/solvers/static_solver.h"
 #include <functional>
+#include <mpi.h>
 
 namespace dembridge::fem
 {
@@ -28,10 +32,17 @@ struct GamgSettings
   /// to the diagonal, are left out of the aggregation graph.
   double threshold = 0.01;
   long max_iterations = 20000;
+  /// The ranks that share the solve; each calls it with the same system. MPI_COMM_SELF: serial.
+  MPI_Comm communicator = MPI_COMM_SELF;
+  /// false: CG without a preconditioner beyond the Jacobi scaling the system already has (the
+  /// Jacobi CG of static_solver.h, on the communicator's ranks).
+  bool multigrid = true;
 };
 
 /// Solves the static solver's scaled system by PETSc CG preconditioned with GAMG, to
-/// |b - A y| <= tolerance |b| (the true residual, as Eigen's CG measures it).
+/// |b - A y| <= tolerance |b| (the true residual, as Eigen's CG measures it). On several ranks
+/// the method names them and the matrix's rows each holds, e.g. "PETSc CG+GAMG on 2 ranks
+/// (mpiaij rows 9612 + 9612)".
 dem::StaticLinearSolution solve_bond_network_gamg(const dem::StaticLinearSystem& system,
                                                   const GamgSettings& settings = {});
 

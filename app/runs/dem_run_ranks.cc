@@ -1,4 +1,5 @@
 #include "app/runs/dem_run_ranks.h"
+#include "app/runs/dem_static_run.h"
 #include "distributed/run_explicit.h"
 #include <deal.II/base/mpi.h>
 
@@ -17,9 +18,13 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
 {
   if (n_ranks() == 1)
     return false;
-  if (config.run.static_solver)
-    throw dem::InputError("Simulation/solver: the static solver does not run on several MPI "
-                          "ranks yet (run it on one rank)");
+  if (config.run.static_solver) // the solves shared by the ranks, rank 0 writes
+  {
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      return false;
+    solve_static_on_other_rank(model, config);
+    return true;
+  }
   if (checkpoint.resume)
     throw dem::InputError("--resume: DEM runs on several MPI ranks do not checkpoint yet (resume "
                           "on one rank)");

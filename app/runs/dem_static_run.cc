@@ -10,6 +10,7 @@
 #include "fem/bond_network_solver.h"
 #endif
 #include <cmath>
+#include <deal.II/base/mpi.h>
 #include <cstdio>
 #include <iomanip>
 #include <optional>
@@ -31,11 +32,61 @@ std::vector<std::string> group_names(const dem::Model& model)
   return names;
 }
 
+namespace
+{
+unsigned n_ranks()
+{
+  return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+}
+
+/// What the ranks other than 0 need of the case to take part in a static run's solves: rank 0's
+/// Simulation/load steps and static linear solver (0 auto, 1 cg, 2 gamg).
+struct StaticRankPlan
+{
+  int load_steps = 1;
+  int linear_solver = 0;
+};
+
+/// Rank 0's plan on every rank (collective on MPI_COMM_WORLD).
+StaticRankPlan share_plan(StaticRankPlan plan)
+{
+  MPI_Bcast(&plan, 2, MPI_INT, 0, MPI_COMM_WORLD);
+  return plan;
+}
+
+/// The solver settings of a static run on several ranks: every system, whatever its size, by
+/// PETSc's CG on the ranks' shared matrix (GAMG, or for cg the Jacobi scaling alone); no
+/// factorisation, which would be serial.
+dem::StaticSettings settings_on_ranks([[maybe_unused]] int linear_solver)
+{
+#ifdef DEMBRIDGE_HAVE_FEM
+  dem::StaticSettings base;
+  base.method = dem::StaticSettings::Method::cg_jacobi;
+  base.cg_tolerance = static_solver_tolerance;
+  fem::GamgSettings gamg;
+  gamg.communicator = MPI_COMM_WORLD;
+  gamg.multigrid = linear_solver != 1;
+  base.iterative_solver = fem::gamg_iterative_solver(gamg);
+  base.iterative_solver_min_unknowns = 0;
+  return base;
+#else
+  throw dem::InputError("Simulation/solver: the static solver on several MPI ranks needs PETSc, "
+                        "and this dembridge was built without the fem layer (run it on one rank)");
+#endif
+}
+} // namespace
+
 // auto: GAMG from 150 k unknowns, where it starts to beat Jacobi CG (bench/RESULTS_STATIC.md)
 dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
 {
   dem::StaticSettings base;
+  base.cg_tolerance = static_solver_tolerance;
   const std::string linear = prm.get({"Simulation"}, "static linear solver");
+  if (n_ranks() > 1)
+    return settings_on_ranks(
+        share_plan({int(prm.get_integer({"Simulation"}, "load steps")),
+                    linear == "cg" ? 1 : linear == "gamg" ? 2 : 0})
+            .linear_solver);
 #ifdef DEMBRIDGE_HAVE_FEM
   if (linear != "cg")
     base.iterative_solver = fem::gamg_iterative_solver();
@@ -46,6 +97,12 @@ dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
                           "dembridge was built without the fem layer (use auto or cg)");
 #endif
   return base;
+}
+
+void solve_static_on_other_rank(dem::Model& model, const dem::CaseConfig& config)
+{
+  const StaticRankPlan plan = share_plan({});
+  solve_static_load_steps(model, config, plan.load_steps, settings_on_ranks(plan.linear_solver));
 }
 
 namespace

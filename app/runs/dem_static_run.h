@@ -31,7 +31,24 @@ struct StaticRun
 
 /// Simulation/static linear solver as the settings every load step starts from: PETSc's GAMG
 /// for large systems where the build has the fem layer (auto), always (gamg) or never (cg).
+/// Under `mpirun -np N` (N > 1) every system is solved by PETSc's CG on the N ranks together
+/// (GAMG; for cg the Jacobi scaling alone), and rank 0 sends the
+/// case's load steps and linear solver to the others (solve_static_on_other_rank): a collective
+/// call there, on rank 0 of MPI_COMM_WORLD.
 dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm);
+
+/// Relative residual |b - A y| / |b| to which a run's iterative solves go (one rank and several),
+/// tighter than the solver's 1e-10 default: the error of the figures is about this times the
+/// condition number of the scaled system, and a run on N ranks (another multigrid hierarchy, other
+/// round-off) is to give one rank's figures to 1e-10 relative. Measured on the HCP compression
+/// (19 k unknowns): at 1e-10, one rank's Jacobi CG and two ranks' GAMG differ by 3e-10 in the
+/// Poisson's ratios; see docs/parallel.md for the figures at this tolerance.
+inline constexpr double static_solver_tolerance = 1e-13;
+
+/// mpirun -np N, a rank other than 0: takes part in every load step's solve of rank 0's static
+/// run (its load steps and linear solver received from rank 0's static_solver_settings); writes
+/// nothing. The model ends in the final state, as on rank 0.
+void solve_static_on_other_rank(dem::Model& model, const dem::CaseConfig& config);
 
 /// Called after each load step @p k (1..N) at load time @p t, the model in that step's
 /// equilibrium and its bond forces recorded.
