@@ -1,22 +1,27 @@
 # Every command under `mpirun -np N` (included by tests/app/CMakeLists.txt): it works, or it
 # refuses within 60 s with one line on rank 0's stderr, nothing on the others', exit code 1 and
-# no folder (tests/app/expect_error_mpi.sh). Explicit particle runs work, with contacts and walls
-# (tests/distributed), the static DEM solver, DEM checkpoints and the contact monitor refuse on
-# more than one rank; FE and coupled runs work (coupled_compression_np2 in tests/coupling,
-# checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in checkpoint_tests.cmake).
+# no folder (tests/app/expect_error_mpi.sh). Explicit particle runs work, with contacts and walls,
+# and so does the static DEM solver (tests/distributed); DEM checkpoints and the contact monitor
+# refuse on more than one rank; FE and coupled runs work (coupled_compression_np2 in
+# tests/coupling, checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in
+# checkpoint_tests.cmake).
 if(MPIEXEC_EXECUTABLE)
   # mpi_error_test(name np regex subcommand args...): mpi_npNP_name, a minute at most
   function(mpi_error_test name np regex)
     dembridge_expect_error_mpi(mpi_np${np}_${name} ${np} ${OUT}/mpi_np${np}_${name} "${regex}" ${ARGN})
     set_tests_properties(mpi_np${np}_${name} PROPERTIES TIMEOUT 60)
   endfunction()
-  # explicit DEM runs split their particles over the ranks (tests/distributed: the cantilever,
-  # compression_hcp and the notched beam on 2 and 3 ranks against one); what does not run there
-  # yet is refused on every rank alike, printed once
-  mpi_error_test(run_dem_static 2 "^dembridge: error: cantilever.prm: Simulation/solver: the static solver does not run on several MPI ranks yet \\(run it on one rank\\)$"
-                 run ${EX}/cantilever.prm --set "Simulation/solver=static")
-  mpi_error_test(run_dem_static 3 "cantilever.prm: Simulation/solver: the static solver does not run on several MPI ranks"
-                 run ${EX}/cantilever.prm --set "Simulation/solver=static")
+  # explicit DEM runs split their particles over the ranks, the static solver solves on them
+  # together (tests/distributed: the cantilever, compression_hcp and the notched beam on 2 and 3
+  # ranks against one); what does not run there is refused on every rank alike, printed once:
+  # a static run whose supports leave a rigid-body mode free (the ranks' CG stops on it together)
+  # and a static run with checkpoints
+  if(TARGET dembridge_fem) # the static solver on several ranks is PETSc's
+    mpi_error_test(run_dem_static_singular 2 "^dembridge: error: cantilever.prm: static solver: the supports leave rigid-body motion free .*\\(PETSc CG\\+GAMG on 2 ranks .* did not converge in [0-9]+ iterations\\)$"
+                   run ${EX}/cantilever.prm --set "Simulation/solver=static" --set "Group clamp/fixed=ux")
+  endif()
+  mpi_error_test(run_dem_static_checkpoint 3 "^dembridge: error: cantilever.prm: Output/checkpoint interval: the static solver has no time steps to checkpoint"
+                 run ${EX}/cantilever.prm --set "Simulation/solver=static" --set "Output/checkpoint interval=0.01")
   # contacts and walls run on several ranks (distributed_compression_failure_np{2,3} in
   # tests/distributed); the record of the first contact does not
   mpi_error_test(run_dem_contact_monitor 2 "contact_two_spheres.prm: Contacts/monitor: the first contact's record does not run on several MPI ranks"
@@ -63,7 +68,7 @@ if(MPIEXEC_EXECUTABLE)
               $<TARGET_FILE:dembridge> ${EX}/fem_compression.prm ${OUT}/mpi_np2_lone_failure)
   endif()
 else()
-  foreach(_t mpi_np2_run_dem_static mpi_np2_print_parameters mpi_np2_lone_failure)
+  foreach(_t mpi_np2_run_dem_static_singular mpi_np2_print_parameters mpi_np2_lone_failure)
     dembridge_skipped_test(${_t} "mpirun not found")
   endforeach()
 endif()

@@ -9,8 +9,8 @@ usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] [--cracks] 
 - energy_balance_error, a small difference of large energies, agrees to R absolute (a static
   run has none: then neither run may have it);
 - both runs wrote the same files (summary.json's output_files) and history.csv has the same
-  header and rows, each column within H (default 1e-6) of the column's largest magnitude (a
-  group's displacement or force component: of the largest of its vector's three columns):
+  header and rows, each column within H (default 1e-6) of the column's largest magnitude (in a
+  static run a group's force or displacement: of the run's largest force or displacement):
   history.csv holds ten digits, and the net force of a particle in near-equilibrium is a small
   difference of bond forces, so the time series of such runs differ between one and two
   threads on one rank by about 1e-9 of their scale already; H catches a lost particle, a group
@@ -90,19 +90,17 @@ def main(argv):
           "history.csv: the same columns and %d rows" % len(rows_a))
     if head_a == head_b and len(rows_a) == len(rows_b):
         worst, where = 0.0, ""
+        # a static run's net force on a free group, or a reaction across the load, is round-off:
+        # its force (displacement) columns against the run's largest force (displacement)
+        static = ref.get("stop_reason") == "static"
+
         def scale_of(j):
-            # a group's displacement or force component against the vector's size: a component
-            # that is zero but for round-off (a static run's reaction across the load) has no
-            # scale of its own
-            name = head_a[j]
             columns = [j]
-            if name[-3:-1] in ("_u", "_f") and name[-1] in "xyz":
-                columns = [head_a.index(name[:-1] + c) for c in "xyz" if name[:-1] + c in head_a]
+            kind = head_a[j][-3:-1]
+            if static and kind in ("_u", "_f") and head_a[j][-1] in "xyz":
+                columns = [k for k, n in enumerate(head_a) if n[-3:-1] == kind and n[-1] in "xyz"]
             return max(abs(r[k]) for r in rows_a for k in columns) or 1.0
 
-        # a static run's unbalanced-force ratio is its solve's round-off (any two solvers differ
-        # in it): at most 1e-9 in both, where a missing rank's rows would leave it of order one
-        static = ref.get("stop_reason") == "static"
         for j, name in enumerate(head_a):
             if name == "energy_balance_error" or (static and name == "unbalanced_force_ratio"):
                 continue
