@@ -97,7 +97,7 @@ void assemble_matrix(PetscObjects& o, const dem::StaticLinearSystem& s,
     }
   check(MatCreate(comm, &o.A), "MatCreate");
   check(MatSetSizes(o.A, n_own, n_own, n_all, n_all), "MatSetSizes");
-  check(MatSetType(o.A, MATAIJ), "MatSetType"); // seqaij on one rank, mpiaij on several
+  check(MatSetType(o.A, MATAIJ), "MatSetType");      // seqaij on one rank, mpiaij on several
   check(MatSetBlockSize(o.A, 6), "MatSetBlockSize"); // aggregates of whole particles
   check(MatSeqAIJSetPreallocation(o.A, 0, d_nnz.data()), "MatSeqAIJSetPreallocation");
   check(MatMPIAIJSetPreallocation(o.A, 0, d_nnz.data(), 0, o_nnz.data()),
@@ -125,12 +125,12 @@ void assemble_matrix(PetscObjects& o, const dem::StaticLinearSystem& s,
     if (rows.empty() || rows.front() != gc) // the column's first entry is its diagonal
       throw std::logic_error("static solver (GAMG): a column of A without its diagonal");
     if (!own_rows.empty())
-      check(MatSetValues(o.A, PetscInt(own_rows.size()), own_rows.data(), 1, &gc,
-                         own_values.data(), INSERT_VALUES),
+      check(MatSetValues(o.A, PetscInt(own_rows.size()), own_rows.data(), 1, &gc, own_values.data(),
+                         INSERT_VALUES),
             "MatSetValues");
     if (own.holds(gc) && rows.size() > 1) // the row part right of the diagonal
-      check(MatSetValues(o.A, 1, &gc, PetscInt(rows.size()) - 1, rows.data() + 1,
-                         values.data() + 1, INSERT_VALUES),
+      check(MatSetValues(o.A, 1, &gc, PetscInt(rows.size()) - 1, rows.data() + 1, values.data() + 1,
+                         INSERT_VALUES),
             "MatSetValues");
   }
   check(MatAssemblyBegin(o.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

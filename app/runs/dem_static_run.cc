@@ -10,8 +10,8 @@
 #include "fem/bond_network_solver.h"
 #endif
 #include <cmath>
-#include <deal.II/base/mpi.h>
 #include <cstdio>
+#include <deal.II/base/mpi.h>
 #include <iomanip>
 #include <optional>
 
@@ -83,10 +83,12 @@ dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm)
   base.cg_tolerance = static_solver_tolerance;
   const std::string linear = prm.get({"Simulation"}, "static linear solver");
   if (n_ranks() > 1)
-    return settings_on_ranks(
-        share_plan({int(prm.get_integer({"Simulation"}, "load steps")),
-                    linear == "cg" ? 1 : linear == "gamg" ? 2 : 0})
-            .linear_solver);
+  {
+    StaticRankPlan plan;
+    plan.load_steps = int(prm.get_integer({"Simulation"}, "load steps"));
+    plan.linear_solver = linear == "cg" ? 1 : linear == "gamg" ? 2 : 0;
+    return settings_on_ranks(share_plan(plan).linear_solver);
+  }
 #ifdef DEMBRIDGE_HAVE_FEM
   if (linear != "cg")
     base.iterative_solver = fem::gamg_iterative_solver();
