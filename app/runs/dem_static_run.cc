@@ -222,7 +222,8 @@ dem::RunResult add_static_run_figures(nlohmann::json& j, const dem::Model& model
                  {"n_free_dofs", st.n_free_dofs},
                  {"held_unbonded_particles", st.held_unbonded},
                  {"assembly_seconds", st.assembly_seconds},
-                 {"solve_seconds", st.solve_seconds}};
+                 {"solve_seconds", st.solve_seconds},
+                 {"preconditioner_setup_seconds", st.setup_seconds}};
   return r;
 }
 
