@@ -31,10 +31,10 @@ struct StaticRun
 
 /// Simulation/static linear solver as the settings every load step starts from: PETSc's GAMG
 /// for large systems where the build has the fem layer (auto), always (gamg) or never (cg).
-/// Under `mpirun -np N` (N > 1) every system is solved by PETSc's CG on the N ranks together
-/// (GAMG; for cg the Jacobi scaling alone), and rank 0 sends the
-/// case's load steps and linear solver to the others (solve_static_on_other_rank): a collective
-/// call there, on rank 0 of MPI_COMM_WORLD.
+/// Under `mpirun -np N` (N > 1) a collective call on MPI_COMM_WORLD: rank 0 sends the case's
+/// load steps and linear solver to the other ranks (solve_static_on_other_rank), and every
+/// system, small and banded ones too, is solved by PETSc's CG on the N ranks together (GAMG; for
+/// cg the Jacobi scaling alone), never factorised.
 dem::StaticSettings static_solver_settings(dealii::ParameterHandler& prm);
 
 /// Relative residual |b - A y| / |b| to which a run's iterative solves go (one rank and several),
