@@ -50,6 +50,15 @@ Voigt6x6 continuum_tensor(const CoupledCase& c)
 {
   const std::string where = "Coupling/continuum tensor";
   const auto& p = c.particles.particles;
+  // The closed form and the periodic cell are the bare lattice's: grain boundaries and weak
+  // planes change the region's tensor (docs/microstructure.md), so the two sides would differ.
+  if (c.particles.microstructure.enabled() &&
+      (c.tensor == TensorSource::closed_form || c.tensor == TensorSource::periodic))
+    throw std::runtime_error(
+        where + ": the " +
+        (c.tensor == TensorSource::closed_form ? "closed form" : "periodic cell") +
+        " is the lattice's without the Microstructure section's grains and "
+        "weak planes; use measured (the region's own tensor) or file");
   switch (c.tensor)
   {
   case TensorSource::closed_form:
