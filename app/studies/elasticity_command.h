@@ -27,6 +27,8 @@ struct ElasticityOptions
   std::string output_dir;             ///< empty: output/elasticity_<case stem>
   double core_margin = dem::ElasticityMeasurementSettings{}.core_margin;
   double boundary_thickness = dem::ElasticityMeasurementSettings{}.boundary_thickness;
+  /// columnar cases: also the interface-compliance estimate across the columns (column_estimate.h)
+  bool interface_estimate = false;
 };
 
 /// Declares the subcommand and its options on @p app.

@@ -113,13 +113,13 @@ CaseConfig columnar(double boundary_youngs, unsigned long seed)
 } // namespace
 
 // The columnar specimen of test_columnar_elasticity (HCP, 0.1 x 0.1 x 0.03 m, r = 2.5 mm, columns
-// of 12.5 mm, jitter 0.5) with grain-boundary bonds half as stiff as the columns' (Young's
-// modulus 2 GPa against 4 GPa): the boundaries then carry about 30 % of its compliance across
+// of 12.5 mm, jitter 0.5) with grain-boundary bonds a third as stiff as the columns' (Young's
+// modulus 4/3 GPa against 4 GPa): the boundaries then carry about 45 % of its compliance across
 // the columns. For each of three seeds, E across the columns (the mean of E_x and E_y of the
 // measured tensor) against the estimate with that specimen's own S_v (its measured core).
 TEST(ColumnCompliance, YoungsModulusAcrossTheColumnsFollowsTheEstimate)
 {
-  const double boundary_youngs = youngs / 2;
+  const double boundary_youngs = youngs / 3;
   const CaseConfig one_plane = block(ParticleSource::Kind::hcp, Vec3(0.06, 0.06, 0.03));
   const auto planes =
       mean_plane_compliance(one_plane, 2, boundary_bonds(one_plane, boundary_youngs), 4);
@@ -162,9 +162,9 @@ TEST(ColumnCompliance, YoungsModulusAcrossTheColumnsFollowsTheEstimate)
     // In-plane isotropy (the full check, E(theta), C44 against C55 and C66 against
     // (C11 - C12) / 2 over six seeds, is test_columnar_elasticity's): within its 8 %.
     EXPECT_LT(std::abs(Em[0] - Em[1]) / across, 0.08);
-    // The boundaries matter: E across the columns well below the intact E (measured 0.70).
-    EXPECT_LT(across / E, 0.75);
-    // The estimate (measured 0.968, 0.974, 0.976: the specimen is softer than the estimate; see
+    // The boundaries matter: E across the columns well below the intact E (measured 0.55).
+    EXPECT_LT(across / E, 0.6);
+    // The estimate (measured 0.966, 0.974, 0.978: the specimen is softer than the estimate; see
     // docs/microstructure.md for the trend with the boundaries' stiffness).
     EXPECT_NEAR(across / estimate, 1, 0.05);
   }
