@@ -12,9 +12,6 @@
 #include "app/studies/interface_compliance.h"
 #include "dem/bonds/bond_model.h"
 #include "dem/measurements/elasticity_tensor.h"
-#include "dem/measurements/particle_stress.h"
-#include "dem/model/groups.h"
-#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
