@@ -19,6 +19,7 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   gmsh libgmsh-dev python3-meshio python3-matplotlib python3-numpy
   libgtest-dev nlohmann-json3-dev libcli11-dev
   pybind11-dev python3-dev # the Python module (python/, docs/python.md)
+  voro++-dev # the columns' tessellation (app/studies/column_tessellation.cc: S_v, docs/microstructure.md)
   libhdf5-openmpi-dev) # checkpoints (app/checkpoint/checkpoint.cc): the HDF5 deal.II links
 # The test suite also checks that ParaView reads the output (pvpython, about 1 GB with its
 # libraries): installed with --test only.

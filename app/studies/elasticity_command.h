@@ -11,7 +11,9 @@
 //   shear_modulus {yz, xz, xy}, anisotropy {universal_index, zener_ratio, bulk/shear moduli
 //   Voigt and Reuss}, measurement {core box, counts, symmetry error, ...}, n_particles, n_bonds,
 //   and for lattices periodic_stiffness_tensor (6x6) with periodic {the same derived fields,
-//   cell_volume, particles_per_cell, bonds_per_cell, coordination}.
+//   cell_volume, particles_per_cell, bonds_per_cell, coordination}; for columnar cases columns
+//   {boundary_area_per_volume, cells, and with --interface-estimate the estimate of E across
+//   the columns and its inputs} (column_estimate.h).
 #include "dem/measurements/elasticity_tensor.h"
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -27,6 +29,8 @@ struct ElasticityOptions
   std::string output_dir;             ///< empty: output/elasticity_<case stem>
   double core_margin = dem::ElasticityMeasurementSettings{}.core_margin;
   double boundary_thickness = dem::ElasticityMeasurementSettings{}.boundary_thickness;
+  /// columnar cases: also the interface-compliance estimate across the columns (column_estimate.h)
+  bool interface_estimate = false;
 };
 
 /// Declares the subcommand and its options on @p app.
