@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Biaxial series across the columns of columnar ice (docs/microstructure.md), after Smith &
+"""Biaxial series across the columns of columnar ice (docs/columnar_ice.md), after Smith &
 Schulson (1994): runs examples/columnar_biaxial.prm at confinement ratios R = sigma_2 / sigma_1
 (default 0, 0.1, ..., 0.5) with `dembridge run`, and reports for each R the peak of sigma_1 and
 the orientation of the cracks up to that peak: the share of crack normals within 30 degrees of

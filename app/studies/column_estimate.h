@@ -3,8 +3,8 @@
 // measured core (column_tessellation.h) and, on request, the interface-compliance estimate of
 // the Young's modulus across the columns, 1 / E_x = 1 / E + S_v (3 B_N + B_T) / 8, with E the
 // case's packing without grains (its tensor measured the same way) and B_N, B_T of a plane of
-// its grain-boundary bonds through the same packing (interface_compliance.h; docs/
-// microstructure.md).
+// its grain-boundary bonds through the same packing (interface_compliance.h;
+// docs/columnar_ice.md).
 #include "dem/measurements/elasticity_tensor.h"
 #include "dem/model/case_config.h"
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 #pragma once
 // The normal and shear compliance of a plane of bonds, B_N and B_T (m/Pa), measured on a
 // specimen with that one plane: the interface-compliance estimate of the Young's modulus across
-// the columns needs them (column_tessellation.h; docs/microstructure.md).
+// the columns needs them (column_tessellation.h; docs/columnar_ice.md).
 //
 // Definition: across a plane of normal n under the traction t = sigma n, the displacement jumps
 // by [u] = B_N (n . t) n + B_T (t - (n . t) n): B > 0 for a plane softer than the packing.

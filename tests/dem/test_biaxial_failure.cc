@@ -121,7 +121,7 @@ Outcome biaxial(double ratio, unsigned seed)
 
 TEST(BiaxialFailure, ConfinementTurnsSplittingOutOfPlane)
 {
-  // seeds 2 and 3 measured too (docs/microstructure.md)
+  // seeds 2 and 3 measured too (docs/columnar_ice.md)
   const Outcome free = biaxial(0.0, 1), confined = biaxial(0.3, 1);
   // unconfined: splitting cracks along the load through the columns (normals along y)
   EXPECT_GT(free.near_y, 1.5 * free.near_z);

@@ -162,7 +162,7 @@ TEST(ColumnCompliance, YoungsModulusAcrossTheColumnsFollowsTheEstimate)
     // The boundaries matter: E across the columns well below the intact E (measured 0.55).
     EXPECT_LT(across / E, 0.6);
     // The estimate (measured 0.966, 0.974, 0.978: the specimen is softer than the estimate; see
-    // docs/microstructure.md for the trend with the boundaries' stiffness).
+    // docs/columnar_ice.md for the trend with the boundaries' stiffness).
     EXPECT_NEAR(across / estimate, 1, 0.05);
   }
 }
