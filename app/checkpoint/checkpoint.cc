@@ -216,8 +216,9 @@ void check_staged_history(const fs::path& file)
 }
 
 /// A fresh run refuses a folder that holds a checkpoint; a resumed one reads the checkpoint's
-/// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time).
-void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
+/// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time);
+/// @p any_ranks: a checkpoint written on several ranks resumes on any number (a DEM run's).
+void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir, bool any_ranks)
 {
   if (!s.resume)
   {
@@ -241,8 +242,9 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
   verify_checkpoint(s.file); // every byte it holds, before anything is built or staged
   const CheckpointHeader h = read_checkpoint_header(s.file);
   check_same_case(h, s.case_text, s.file);
-  // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split
-  if (h.mpi_ranks != s.ranks)
+  // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split.
+  // A DEM run on several ranks writes the whole run; on one its contacts in one store's layout.
+  if (h.mpi_ranks != s.ranks && !(any_ranks && h.mpi_ranks > 1))
     throw InputError(s.file.string() + ": the checkpoint was written by a run on " +
                      std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
                      std::to_string(s.ranks) + " (resume it with mpirun -np " +
@@ -250,6 +252,7 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
   check_staged_history(s.file);
   s.resumed_step = h.step;
   s.resumed_time = h.time;
+  s.written_ranks = h.mpi_ranks;
 }
 } // namespace
 
@@ -280,10 +283,10 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     throw InputError(s.case_name + ": " + (s.resume ? "--resume" : key) +
                      ": a static FE run (FEM/problem = static) has no time steps to checkpoint "
                      "(FE dynamics, DEM and coupled runs are checkpointed)");
-  // why: a continuum (coupled or FE run) is split over the ranks; each DEM process runs it all
+  // why: a continuum (coupled or FE run) and a DEM run's particles are split over the ranks
   const bool mpi = dealii::Utilities::MPI::job_supports_mpi();
   const bool root = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  if ((mode == "coupled" || mode == "fem") && mpi)
+  if (mpi)
     s.ranks = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
@@ -292,7 +295,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
   if (root)
     try
     {
-      check_checkpoint_file(s, output_dir);
+      check_checkpoint_file(s, output_dir, mode == "dem");
     }
     catch (const std::exception& e)
     {
@@ -303,6 +306,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     refused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refused, 0);
     s.resumed_step = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_step, 0);
     s.resumed_time = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_time, 0);
+    s.written_ranks = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.written_ranks, 0);
   }
   if (!refused.empty())
     throw InputError(refused);
