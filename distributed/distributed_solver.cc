@@ -352,10 +352,9 @@ void DistributedSolver::gather_for_checkpoint()
   for (std::size_t i = 0; i < model_.particles.size(); ++i)
     report_->set_support_reaction(i, Reaction{});
   for (std::size_t at = 0; at < reactions.size(); at += 7)
-    report_->set_support_reaction(
-        std::size_t(reactions[at]),
-        {{reactions[at + 1], reactions[at + 2], reactions[at + 3], reactions[at + 4],
-          reactions[at + 5], reactions[at + 6]}});
+    report_->set_support_reaction(std::size_t(reactions[at]),
+                                  {{reactions[at + 1], reactions[at + 2], reactions[at + 3],
+                                    reactions[at + 4], reactions[at + 5], reactions[at + 6]}});
   auto state = report_->take_running_state();
   state.damping_work = 0;
   for (const double w : damping_work) // in rank order, as the energies

@@ -103,7 +103,8 @@ private:
   dem::ContactForces* report_contacts_ = nullptr; ///< the model's contacts (rank 0: the sums)
   std::unique_ptr<ContactCheckpoint> contact_checkpoint_;
   bool resumed_ = false;
-  /// rank 0 (every rank while a resumed run is spread): built before the particles are spread (it puts the model's bonds in its order)
+  /// rank 0 (every rank while a resumed run is spread): built before the particles are spread
+  /// (it puts the model's bonds in its order)
   std::unique_ptr<dem::ExplicitSolver> report_;
   DistributedParticles particles_;
   std::vector<std::size_t> group_sizes_; ///< members over all ranks

@@ -9,14 +9,11 @@ namespace
 {
 /// The fields of ContactForces::visit_state that are sums over the ranks: each rank books its
 /// share of the energies, the walls' forces and the counts. Keys that start with one of these.
-constexpr std::array<const char*, 8> summed_fields{{"contacts/energy/",
-                                   "contacts/walls/force",  // also force_previous
-                                   "contacts/walls/damping_force",
-                                   "contacts/active",
-                                   "contacts/contact_updates",
-                                   "contacts/search_seconds",
-                                   "contacts/contact_seconds",
-                                   "contacts/neighbour_list/builds"}};
+constexpr std::array<const char*, 8> summed_fields{
+    {"contacts/energy/",
+     "contacts/walls/force", // also force_previous
+     "contacts/walls/damping_force", "contacts/active", "contacts/contact_updates",
+     "contacts/search_seconds", "contacts/contact_seconds", "contacts/neighbour_list/builds"}};
 /// The walls' positions: the same on every rank (their motion is prescribed); rank 0's.
 constexpr std::array<const char*, 2> copied_fields{
     {"contacts/walls/point", "contacts/walls/offset_built"}};

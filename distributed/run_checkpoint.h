@@ -25,10 +25,10 @@ namespace dembridge::distributed
 class FieldArchive : public dem::StateArchive
 {
 public:
-  using Value = std::variant<std::vector<double>, std::vector<std::int32_t>,
-                             std::vector<std::int64_t>, std::vector<std::uint8_t>,
-                             std::vector<std::uint32_t>, std::vector<dem::Vec3>,
-                             std::vector<dem::Quat>, std::string>;
+  using Value =
+      std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::int64_t>,
+                   std::vector<std::uint8_t>, std::vector<std::uint32_t>, std::vector<dem::Vec3>,
+                   std::vector<dem::Quat>, std::string>;
   bool loading() const override { return loading_; }
   void start_loading() { loading_ = true; }
   void enter(const std::string& group) override { path_.push_back(group); }

@@ -215,6 +215,18 @@ void check_staged_history(const fs::path& file)
   }
 }
 
+/// Whether a DEM checkpoint was written by the run on several ranks (distributed/): its contacts
+/// are held by global ids (solver/contribution_0/ranks), not in the one-rank layout. Such a run
+/// on one rank (resumed from several) writes them so too.
+bool holds_contacts_of_ranks(const fs::path& file)
+{
+  Handle h = open_checkpoint(file);
+  for (const char* group : {"solver", "solver/contribution_0", "solver/contribution_0/ranks"})
+    if (H5Lexists(h.get(), group, H5P_DEFAULT) <= 0)
+      return false;
+  return true;
+}
+
 /// A fresh run refuses a folder that holds a checkpoint; a resumed one reads the checkpoint's
 /// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time);
 /// @p any_ranks: a checkpoint written on several ranks resumes on any number (a DEM run's).
@@ -244,7 +256,8 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir,
   check_same_case(h, s.case_text, s.file);
   // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split.
   // A DEM run on several ranks writes the whole run; on one its contacts in one store's layout.
-  if (h.mpi_ranks != s.ranks && !(any_ranks && h.mpi_ranks > 1))
+  s.whole_run = any_ranks && (h.mpi_ranks > 1 || holds_contacts_of_ranks(s.file));
+  if (h.mpi_ranks != s.ranks && !s.whole_run)
     throw InputError(s.file.string() + ": the checkpoint was written by a run on " +
                      std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
                      std::to_string(s.ranks) + " (resume it with mpirun -np " +
@@ -252,7 +265,6 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir,
   check_staged_history(s.file);
   s.resumed_step = h.step;
   s.resumed_time = h.time;
-  s.written_ranks = h.mpi_ranks;
 }
 } // namespace
 
@@ -306,7 +318,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     refused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refused, 0);
     s.resumed_step = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_step, 0);
     s.resumed_time = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_time, 0);
-    s.written_ranks = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.written_ranks, 0);
+    s.whole_run = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.whole_run, 0);
   }
   if (!refused.empty())
     throw InputError(refused);

@@ -40,7 +40,9 @@ struct CheckpointSettings
   double wall_interval = 0;   ///< wall time between checkpoints, s; 0: none
   bool resume = false;        ///< restore from `file` before the first step
   int ranks = 1;              ///< MPI ranks of the run
-  int written_ranks = 1;      ///< resume: the MPI ranks of the run that wrote the checkpoint
+  /// resume: a DEM checkpoint of the run on several ranks (distributed/run_checkpoint.h), which
+  /// resumes on any number of ranks
+  bool whole_run = false;
   long resumed_step = 0;      ///< the checkpoint's step and time (resume)
   double resumed_time = 0;
   std::string case_name; ///< the case file's name (messages, header)

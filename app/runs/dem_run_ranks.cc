@@ -15,13 +15,13 @@ unsigned n_ranks()
 /// global ids, not in the one-rank layout; distributed/run_checkpoint.h).
 bool on_ranks(const CheckpointSettings& checkpoint)
 {
-  return n_ranks() > 1 || (checkpoint.resume && checkpoint.written_ranks > 1);
+  return n_ranks() > 1 || (checkpoint.resume && checkpoint.whole_run);
 }
 
 distributed::Resume resume_of(const CheckpointSettings& checkpoint)
 {
-  return {checkpoint.resume, [file = checkpoint.file](const auto& visit)
-          { read_checkpoint(file, visit); }};
+  return {checkpoint.resume,
+          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
 }
 } // namespace
 
@@ -33,8 +33,8 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
   if (config.run.static_solver)
     throw dem::InputError("Simulation/solver: the static solver does not run on several MPI "
                           "ranks yet (run it on one rank)");
-  if (const std::string why = distributed::unsupported_on_ranks(
-          model, checkpoint.enabled() || checkpoint.resume);
+  if (const std::string why =
+          distributed::unsupported_on_ranks(model, checkpoint.enabled() || checkpoint.resume);
       !why.empty())
     throw dem::InputError(why);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
