@@ -2,7 +2,8 @@
 """A DEM checkpoint written on several MPI ranks, resumed on as many and on others.
 
 usage: resume_ranks.py DEMBRIDGE MPIEXEC CASE OUT --write N --kill-after-step K
-                       --resume-on M[,M...] [--again-after-step K2] [--set KEY=VALUE]...
+                       --resume-on M[,M...] [--again-after-step K2] [--write-failure]
+                       [--set KEY=VALUE]...
 
 Runs `MPIEXEC -np N dembridge run CASE` (with Output/checkpoint interval among the --set) into
 OUT/killed, killed by SIGKILL after step K (DEMBRIDGE_TEST_KILL_AFTER_STEP, on every rank, after
@@ -12,7 +13,7 @@ M > 1): it must end with exit code 0, say it resumed at the checkpoint's step, a
 summary (compare_runs.py then compares it with the uninterrupted run). With --again-after-step
 K2: the folder resumed on one rank, killed again after step K2 (after its own checkpoint, written
 by the run on one rank in the layout of the ranks) and resumed once more on N ranks into
-OUT/resumed_again: it must resume from a step after K. Last, a resume on N ranks
+OUT/resumed_again: it must resume from a step after K. With --write-failure, a resume on N ranks
 whose next checkpoint cannot be written (a folder in the place of checkpoint.h5.tmp) must stop
 every rank within a minute with exit code 1 and one dembridge line naming the file.
 Plain python3.
@@ -35,7 +36,7 @@ def main():
         fail(__doc__)
     exe, mpiexec, case, out = args[:4]
     rest = args[4:]
-    sets, write_np, kill_after, resume_on, again_after = [], 2, 0, [], 0
+    sets, write_np, kill_after, resume_on, again_after, write_failure = [], 2, 0, [], 0, False
     while rest:
         flag = rest.pop(0)
         if flag == "--set":
@@ -48,6 +49,8 @@ def main():
             resume_on = [int(m) for m in rest.pop(0).split(",")]
         elif flag == "--again-after-step":
             again_after = int(rest.pop(0))
+        elif flag == "--write-failure":
+            write_failure = True
         else:
             fail("unknown argument " + flag)
     if kill_after <= 0 or not resume_on:
@@ -106,6 +109,8 @@ def main():
         print("resumed on one rank, killed after step %d, resumed on %d ranks from step %d" %
               (again_after, write_np, step))
 
+    if not write_failure:
+        return
     # a checkpoint that cannot be written: every rank stops, one line, exit code 1
     folder = os.path.join(out, "write_fails")
     shutil.copytree(killed, folder, symlinks=True)
