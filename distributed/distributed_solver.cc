@@ -107,8 +107,22 @@ BackgroundGrid DistributedSolver::restore_whole(const BackgroundGrid* grid, cons
     report_->add_contribution(contact_checkpoint_.get());
   }
   resumed_ = resume;
-  if (restore && (root_ || resume))
-    restore(*report_);
+  // every rank learns whether one could not restore (a damaged checkpoint, say): all stop with
+  // the first such rank's error, none waits in the setup's collective calls
+  std::string failed;
+  try
+  {
+    if (restore && (root_ || resume))
+      restore(*report_);
+  }
+  catch (const std::exception& e)
+  {
+    failed = *e.what() ? e.what() : "checkpoint: unknown error";
+  }
+  const unsigned rank = dealii::Utilities::MPI::this_mpi_process(comm_);
+  const unsigned first = dealii::Utilities::MPI::min(failed.empty() ? n_ranks_ : rank, comm_);
+  if (first < n_ranks_)
+    throw std::runtime_error(dealii::Utilities::MPI::broadcast(comm_, failed, first));
   // why: a resumed run's particles lie where the checkpoint left them
   return grid ? *grid : background_grid_for(model_);
 }
