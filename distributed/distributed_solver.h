@@ -14,7 +14,9 @@
 // keeps its part) and a second ExplicitSolver over it that is never stepped: gather() puts the
 // particles' state into rank 0's model, and the summed figures and the crack log into that
 // solver, so that a run's observer (history, ParaView files) and measurements read them as on
-// one rank.
+// one rank. A checkpoint is that solver's state after gather_for_checkpoint (the whole run,
+// run_checkpoint.h); a resume restores it into the whole model on every rank before the
+// particles are spread.
 #include "dem/contacts/contact_forces.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
