@@ -67,8 +67,10 @@ BackgroundGrid background_grid_for(const dem::Model& model)
   for (std::size_t k = 0; k < model.bonds.size(); ++k)
   {
     const auto ia = std::size_t(model.bonds.a[k]), ib = std::size_t(model.bonds.b[k]);
-    longest =
-        std::max({longest, model.bonds.rest_length[k], (p.position[ib] - p.position[ia]).norm()});
+    longest = std::max(longest, model.bonds.rest_length[k]);
+    // a broken bond joins nothing (a resumed run's ends may lie far apart)
+    if (model.bonds.state[k] != dem::BondState::broken)
+      longest = std::max(longest, (p.position[ib] - p.position[ia]).norm());
   }
   const double largest_radius = *std::max_element(p.radius.begin(), p.radius.end());
   dem::Vec3 lo = p.position[0], hi = p.position[0];

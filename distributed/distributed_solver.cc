@@ -11,26 +11,6 @@ namespace
 {
 using dem::Vec3;
 
-/// Collective: every rank's @p mine, concatenated in rank order on rank 0 (empty elsewhere).
-std::vector<double> gather_on_root(const std::vector<double>& mine, MPI_Comm comm)
-{
-  const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-  const int count = int(mine.size());
-  std::vector<int> counts(root ? n_ranks : 0), offsets(root ? n_ranks : 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::vector<double> all;
-  if (root)
-  {
-    for (unsigned r = 1; r < n_ranks; ++r)
-      offsets[r] = offsets[r - 1] + counts[r - 1];
-    all.resize(std::size_t(offsets.back() + counts.back()));
-  }
-  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-              0, comm);
-  return all;
-}
-
 std::uint64_t pair_key(std::int64_t a, std::int64_t b)
 {
   return (std::uint64_t(a) << 32) | std::uint64_t(b);
@@ -70,26 +50,31 @@ constexpr std::size_t bond_state_doubles = 8;
 } // namespace
 
 DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSettings& settings,
-                                     MPI_Comm comm, const BackgroundGrid* grid)
+                                     MPI_Comm comm, const BackgroundGrid* grid,
+                                     const Restore& restore, bool resume)
     : model_(model), comm_(comm), root_(dealii::Utilities::MPI::this_mpi_process(comm) == 0),
       n_ranks_(dealii::Utilities::MPI::n_mpi_processes(comm)), settings_(settings),
-      report_(root_ ? std::make_unique<dem::ExplicitSolver>(model.particles, model.bonds,
-                                                            model.groups, model.constraints,
-                                                            model.loads, settings)
-                    : nullptr),
-      particles_(model, grid ? *grid : background_grid_for(model), comm)
+      report_(root_ || resume ? std::make_unique<dem::ExplicitSolver>(
+                                    model.particles, model.bonds, model.groups, model.constraints,
+                                    model.loads, settings)
+                              : nullptr),
+      particles_(model, restore_whole(grid, restore, resume), comm)
 {
   for (const auto& g : model.groups)
     group_sizes_.push_back(g.members.size());
-  for (const auto& c : model.contributions)
-    if (auto* found = dynamic_cast<dem::ContactForces*>(c.get()))
+  if (report_contacts_)
+  {
+    contacts_ = std::make_unique<dem::ContactForces>(*report_contacts_);
+    contacts_->fix_skin(model.particles); // the whole model's, on every rank
+    contact_figures_.resize(report_contacts_->n_figures());
+    contact_figures_all_.resize(contact_figures_.size() * n_ranks_);
+    if (resumed_)
     {
-      report_contacts_ = found;
-      contacts_ = std::make_unique<dem::ContactForces>(*found);
-      contacts_->fix_skin(model.particles); // the whole model's, on every rank
-      contact_figures_.resize(found->n_figures());
-      contact_figures_all_.resize(contact_figures_.size() * n_ranks_);
+      contact_history_ = std::move(contact_checkpoint_->history());
+      if (!root_) // rank 0 continues the sums of the checkpoint
+        zero_contact_sums(*contacts_);
     }
+  }
   reduce_buffer_.resize(figure::count * n_ranks_);
   if (root_)
   {
@@ -102,7 +87,61 @@ DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSetting
     for (std::size_t i = 0; i < model.particles.size(); ++i)
       global_of_user_[std::size_t(model.particles.id[i])] = std::int64_t(i);
   }
-  build_local_solver({});
+  if (resumed_)
+    continue_restored_run();
+  else
+    build_local_solver({});
+  if (!root_)
+    report_.reset(), contact_checkpoint_.reset();
+}
+
+BackgroundGrid DistributedSolver::restore_whole(const BackgroundGrid* grid, const Restore& restore,
+                                                bool resume)
+{
+  for (const auto& c : model_.contributions)
+    if (auto* found = dynamic_cast<dem::ContactForces*>(c.get()))
+      report_contacts_ = found;
+  if (report_ && report_contacts_)
+  {
+    contact_checkpoint_ = std::make_unique<ContactCheckpoint>(*report_contacts_);
+    report_->add_contribution(contact_checkpoint_.get());
+  }
+  resumed_ = resume;
+  // every rank learns whether one could not restore (a damaged checkpoint, say): all stop with
+  // the first such rank's error, none waits in the setup's collective calls
+  std::string failed;
+  try
+  {
+    if (restore && (root_ || resume))
+      restore(*report_);
+  }
+  catch (const std::exception& e)
+  {
+    failed = *e.what() ? e.what() : "checkpoint: unknown error";
+  }
+  const unsigned rank = dealii::Utilities::MPI::this_mpi_process(comm_);
+  const unsigned first = dealii::Utilities::MPI::min(failed.empty() ? n_ranks_ : rank, comm_);
+  if (first < n_ranks_)
+    throw std::runtime_error(dealii::Utilities::MPI::broadcast(comm_, failed, first));
+  // why: a resumed run's particles lie where the checkpoint left them
+  return grid ? *grid : background_grid_for(model_);
+}
+
+void DistributedSolver::continue_restored_run()
+{
+  auto state = report_->take_running_state();
+  report_->set_running_state(dem::ExplicitSolver::RunningState(state));
+  energy_ = state.energy, max_speed_ = state.max_speed, unbalanced_ = state.unbalanced;
+  unbalanced_ratio_ = state.unbalanced_ratio, broken_by_mode_ = state.broken_by_mode;
+  n_broken_ = long(state.cracks.size());
+  if (!root_) // the sums and the crack log run on on rank 0; the others start theirs at zero
+    state.energy = {}, state.damping_work = 0, state.cracks.clear(), state.broken_by_mode = {},
+    state.unbalanced = {};
+  cracks_gathered_ = state.cracks.size(); // rank 0's report holds them
+  build_local_solver(std::move(state));
+  const auto& ids = particles_.global_ids();
+  for (std::size_t i = 0; i < particles_.n_owned(); ++i)
+    local_->set_support_reaction(i, report_->support_reaction(std::size_t(ids[i])));
 }
 
 void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& state)
@@ -271,6 +310,74 @@ Vec3 DistributedSolver::group_mean_displacement(int group)
   return n > 0 ? Vec3(sum / double(n)) : sum;
 }
 
+void DistributedSolver::gather_bond_states(bool every_bond)
+{
+  // each bond from the rank of its end a (that books it)
+  const dem::BondStore& b = particles_.bonds();
+  const auto& ids = particles_.global_ids();
+  std::vector<double> mine;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    if (std::size_t(b.a[k]) < particles_.n_owned() &&
+        (every_bond || b.state[k] != dem::BondState::intact))
+      mine.insert(mine.end(), {double(ids[std::size_t(b.a[k])]), double(ids[std::size_t(b.b[k])]),
+                               double(b.state[k]), b.damage[k], b.kappa_max[k], b.kappa_ultimate[k],
+                               b.dissipated[k], double(b.failure_mode[k])});
+  const std::vector<double> gathered = gather_on_root(mine, comm_);
+  dem::BondStore& whole_bonds = model_.bonds;
+  for (std::size_t at = 0; at < gathered.size(); at += bond_state_doubles)
+  {
+    const double* r = &gathered[at];
+    const std::size_t k = bond_index_.at(pair_key(std::int64_t(r[0]), std::int64_t(r[1])));
+    whole_bonds.state[k] = dem::BondState(int(r[2]));
+    whole_bonds.damage[k] = r[3], whole_bonds.kappa_max[k] = r[4];
+    whole_bonds.kappa_ultimate[k] = r[5], whole_bonds.dissipated[k] = r[6];
+    whole_bonds.failure_mode[k] = dem::CrackMode(int(r[7]));
+  }
+}
+
+void DistributedSolver::gather_for_checkpoint()
+{
+  reduce(); // the sums as they stand (one rank's checkpoint holds its solver's as they stand)
+  gather(true);
+  if (particles_.bonds().has_failure())
+    gather_bond_states(true); // softening history of bonds still intact, and all the rest
+  // the support reactions of the last step and the dashpots' work booked half a step ahead
+  std::vector<double> mine;
+  const auto& ids = particles_.global_ids();
+  for (std::size_t i = 0; i < particles_.n_owned(); ++i)
+    if (const Reaction r = local_->support_reaction(i); r != Reaction{})
+    {
+      mine.push_back(double(ids[i]));
+      mine.insert(mine.end(), r.begin(), r.end());
+    }
+  const std::vector<double> reactions = gather_on_root(mine, comm_);
+  auto running = local_->take_running_state();
+  const std::vector<double> damping_work = gather_on_root({running.damping_work}, comm_);
+  local_->set_running_state(std::move(running));
+  std::vector<double> history;
+  if (contacts_)
+  {
+    contacts_->export_history(history);
+    history = gather_contact_history(history, comm_);
+    sum_contact_state(*contacts_, report_contacts_, comm_);
+  }
+  if (!root_)
+    return;
+  for (std::size_t i = 0; i < model_.particles.size(); ++i)
+    report_->set_support_reaction(i, Reaction{});
+  for (std::size_t at = 0; at < reactions.size(); at += 7)
+    report_->set_support_reaction(std::size_t(reactions[at]),
+                                  {{reactions[at + 1], reactions[at + 2], reactions[at + 3],
+                                    reactions[at + 4], reactions[at + 5], reactions[at + 6]}});
+  auto state = report_->take_running_state();
+  state.damping_work = 0;
+  for (const double w : damping_work) // in rank order, as the energies
+    state.damping_work += w;
+  report_->set_running_state(std::move(state));
+  if (contact_checkpoint_)
+    contact_checkpoint_->history() = std::move(history);
+}
+
 void DistributedSolver::gather(bool all)
 {
   const dem::ParticleStore& p = particles_.particles();
@@ -335,28 +442,8 @@ void DistributedSolver::gather(bool all)
                    [](const dem::CrackEvent& x, const dem::CrackEvent& y)
                    { return std::tuple(x.time, x.a, x.b) < std::tuple(y.time, y.a, y.b); });
 
-  // the bonds that are no longer intact (booked on the rank of their end a)
   if (all && particles_.bonds().has_failure()) // (the model of a rank > 0 may be freed)
-  {
-    const dem::BondStore& b = particles_.bonds();
-    mine.clear();
-    for (std::size_t k = 0; k < b.size(); ++k)
-      if (std::size_t(b.a[k]) < particles_.n_owned() && b.state[k] != dem::BondState::intact)
-        mine.insert(mine.end(), {double(ids[std::size_t(b.a[k])]), double(ids[std::size_t(b.b[k])]),
-                                 double(b.state[k]), b.damage[k], b.kappa_max[k],
-                                 b.kappa_ultimate[k], b.dissipated[k], double(b.failure_mode[k])});
-    gathered = gather_on_root(mine, comm_);
-    dem::BondStore& whole_bonds = model_.bonds;
-    for (std::size_t at = 0; at < gathered.size(); at += bond_state_doubles)
-    {
-      const double* r = &gathered[at];
-      const std::size_t k = bond_index_.at(pair_key(std::int64_t(r[0]), std::int64_t(r[1])));
-      whole_bonds.state[k] = dem::BondState(int(r[2]));
-      whole_bonds.damage[k] = r[3], whole_bonds.kappa_max[k] = r[4];
-      whole_bonds.kappa_ultimate[k] = r[5], whole_bonds.dissipated[k] = r[6];
-      whole_bonds.failure_mode[k] = dem::CrackMode(int(r[7]));
-    }
-  }
+    gather_bond_states(false);
   if (!root_)
     return;
   auto state = report_->take_running_state();

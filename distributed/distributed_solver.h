@@ -14,11 +14,15 @@
 // keeps its part) and a second ExplicitSolver over it that is never stepped: gather() puts the
 // particles' state into rank 0's model, and the summed figures and the crack log into that
 // solver, so that a run's observer (history, ParaView files) and measurements read them as on
-// one rank.
+// one rank. A checkpoint is that solver's state after gather_for_checkpoint (the whole run,
+// run_checkpoint.h); a resume restores it into the whole model on every rank before the
+// particles are spread.
 #include "dem/contacts/contact_forces.h"
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "distributed/distributed_particles.h"
+#include "distributed/run_checkpoint.h"
+#include <functional>
 #include <memory>
 #include <unordered_map>
 
@@ -27,10 +31,16 @@ namespace dembridge::distributed
 class DistributedSolver
 {
 public:
+  /// Restores a run from a checkpoint into the whole model and the solver over it (the report
+  /// solver; run_checkpoint.h) before the particles are spread.
+  using Restore = std::function<void(dem::ExplicitSolver& whole)>;
   /// Every rank passes the same model and settings; @p grid is the background mesh
-  /// (background_grid_for(model) by default).
+  /// (background_grid_for(model) by default). @p restore: called on rank 0 (its observer's
+  /// on_start) and, with @p resume, on every rank: the ranks then continue the restored run,
+  /// each from its part of the restored model, rank 0 with the running sums.
   DistributedSolver(dem::Model& model, const dem::SolverSettings& settings, MPI_Comm comm,
-                    const BackgroundGrid* grid = nullptr);
+                    const BackgroundGrid* grid = nullptr, const Restore& restore = {},
+                    bool resume = false);
 
   /// One step on every rank (collective): the local step, the ghosts' refresh, a migration
   /// when due (or a throw on every rank when some rank became unstable); on record steps the
@@ -43,6 +53,10 @@ public:
   /// those in a group) and with @p all the state of the bonds that are no longer intact; rank
   /// 0's report solver takes the summed figures and the cracks so far.
   void gather(bool all);
+  /// Collective, before a checkpoint: as gather(true), and rank 0's model and report solver take
+  /// every bond's state, the support reactions, the running sums over the ranks (the contacts'
+  /// too) and every contact's history: what the one-rank checkpoint of the report solver holds.
+  void gather_for_checkpoint();
 
   double time() const { return local_->time(); }
   long steps() const { return local_->steps(); }
@@ -69,6 +83,13 @@ public:
   const Timings& timings() const { return timings_; }
 
 private:
+  /// The initializer's step between the report solver and the particles: attaches the contacts'
+  /// checkpoint to the report solver, restores (restore), and gives the background mesh.
+  BackgroundGrid restore_whole(const BackgroundGrid* grid, const Restore& restore, bool resume);
+  /// A resumed run's local solver, its support reactions and the figures of the checkpoint.
+  void continue_restored_run();
+  /// Collective: the gathered bond states into rank 0's model; @p every_bond: intact ones too.
+  void gather_bond_states(bool every_bond);
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
   void migrate();
   /// Collective: rank 0's model's contacts take the figures of the step at @p time summed over
@@ -80,7 +101,12 @@ private:
   bool root_;
   unsigned n_ranks_;
   dem::SolverSettings settings_;
-  /// rank 0: built before the particles are spread (it puts the model's bonds in its order)
+  // (before report_ and particles_: restore_whole sets them)
+  dem::ContactForces* report_contacts_ = nullptr; ///< the model's contacts (rank 0: the sums)
+  std::unique_ptr<ContactCheckpoint> contact_checkpoint_;
+  bool resumed_ = false;
+  /// rank 0 (every rank while a resumed run is spread): built before the particles are spread
+  /// (it puts the model's bonds in its order)
   std::unique_ptr<dem::ExplicitSolver> report_;
   DistributedParticles particles_;
   std::vector<std::size_t> group_sizes_; ///< members over all ranks
@@ -89,7 +115,6 @@ private:
   /// other: its energy sums and wall forces run on), the model's (rank 0: reports the sums),
   /// and the contact histories that travel at a migration
   std::unique_ptr<dem::ContactForces> contacts_;
-  dem::ContactForces* report_contacts_ = nullptr;
   std::vector<double> contact_history_, contact_figures_, contact_figures_all_;
   double last_step_time_ = 0; ///< t_n of the last step (its contact figures are at t_n)
   dem::EnergyBalance energy_;

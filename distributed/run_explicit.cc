@@ -4,12 +4,19 @@
 #include "distributed/distributed_solver.h"
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <type_traits>
 
 namespace dembridge::distributed
 {
-std::string unsupported_on_ranks(const dem::Model& model)
+std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints)
 {
+  // why: the pressure of the last step is the solver's state, which the ranks do not gather
+  for (const auto& l : model.loads)
+    if (checkpoints && l.kind == dem::LoadKind::pressure)
+      return "Load " + l.name +
+             "/type: a pressure load is not checkpointed on several MPI ranks yet (run it on "
+             "one rank, or without checkpoints)";
   for (const auto& c : model.contributions)
   {
     const auto* contacts = dynamic_cast<const dem::ContactForces*>(c.get());
@@ -24,8 +31,32 @@ std::string unsupported_on_ranks(const dem::Model& model)
   return {};
 }
 
+namespace
+{
+/// Collective: the state into rank 0's report solver, rank 0's observer writes it; a failed
+/// write throws its error on every rank.
+void write_checkpoint(DistributedSolver& solver, dem::RunObserver* observer,
+                      dem::RunProgress& progress, MPI_Comm comm)
+{
+  solver.gather_for_checkpoint();
+  std::string failed;
+  if (solver.report() && observer)
+    try
+    {
+      observer->on_checkpoint(*solver.report(), progress);
+    }
+    catch (const std::exception& e)
+    {
+      failed = *e.what() ? e.what() : "checkpoint: unknown error";
+    }
+  failed = dealii::Utilities::MPI::broadcast(comm, failed, 0);
+  if (!failed.empty())
+    throw std::runtime_error(failed);
+}
+} // namespace
+
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::RunObserver* observer,
-                            dem::RunSchedule sched, MPI_Comm comm)
+                            dem::RunSchedule sched, MPI_Comm comm, const Resume& resume)
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -33,10 +64,29 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   // why: every rank must take the same steps for records, snapshots and reductions
   static_assert(std::is_trivially_copyable_v<dem::RunSchedule>);
   MPI_Bcast(&sched, int(sizeof(sched)), MPI_BYTE, 0, comm);
-  if (const std::string why = unsupported_on_ranks(model); !why.empty())
+  const bool checkpoints =
+      resume.resume || sched.checkpoint_interval > 0 || sched.checkpoint_wall_interval > 0;
+  if (const std::string why = unsupported_on_ranks(model, checkpoints); !why.empty())
     throw dem::InputError(why);
+  dem::RunProgress progress;
+  progress.next_checkpoint_time = sched.checkpoint_interval;
+  // rank 0's observer starts (and restores a resumed run) before the particles are spread
+  auto restore = [&](dem::ExplicitSolver& whole)
+  {
+    if (root && observer)
+      observer->on_start(whole, progress);
+    else if (resume.read)
+      resume.read(
+          [&](dem::StateArchive& a)
+          {
+            whole.visit_state(a);
+            progress.visit_state(a);
+          });
+  };
   DistributedSolver solver(
-      model, {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping}, comm);
+      model, {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping}, comm,
+      nullptr, restore, resume.resume);
+  const long first_step = solver.steps();
   if (!root) // each rank keeps its part; rank 0 keeps the whole model for the outputs
     model.particles = {}, model.bonds = {};
   dem::RunResult res;
@@ -53,9 +103,6 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   for (const auto& l : model.loads)
     if (std::isfinite(l.end_time))
       loads_end = std::max(loads_end, l.end_time);
-  dem::RunProgress progress;
-  if (root && observer)
-    observer->on_start(*solver.report(), progress);
   std::vector<double>& ft = progress.frequency_time;
   std::vector<double>& fu = progress.frequency_displacement;
   const long expected = long(std::min(double(c.run.max_steps), c.run.end_time / model.time_step));
@@ -70,7 +117,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     if (progress.largest_seen > 0)
       progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
   };
-  auto last_progress = start;
+  auto last_progress = start, last_checkpoint = start;
   res.stop_reason = "end time";
   bool gathered_all = false;
   while (true)
@@ -108,13 +155,36 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     {
       last_progress = now;
       const double wall = std::chrono::duration<double>(now - start).count();
-      const double rate = solver.steps() / wall;
+      const double rate = double(solver.steps() - first_step) / wall;
       const double frac = std::min(1.0, solver.time() / c.run.end_time);
       observer->on_progress(*solver.report(), frac, rate,
                             rate > 0 ? (expected - solver.steps()) / rate : 0);
     }
     if (stop)
       break;
+    // checkpoints as on one rank (dem::run_explicit); the wall clock is rank 0's
+    bool checkpoint = false;
+    if (sched.checkpoint_interval > 0 &&
+        solver.time() + 0.5 * model.time_step >= progress.next_checkpoint_time)
+    {
+      checkpoint = true;
+      while (progress.next_checkpoint_time <= solver.time() + 0.5 * model.time_step)
+        progress.next_checkpoint_time += sched.checkpoint_interval;
+    }
+    if (sched.checkpoint_wall_interval > 0)
+    {
+      int due = root && std::chrono::duration<double>(now - last_checkpoint).count() >=
+                            sched.checkpoint_wall_interval;
+      MPI_Bcast(&due, 1, MPI_INT, 0, comm);
+      checkpoint = checkpoint || due;
+    }
+    if (checkpoint)
+    {
+      write_checkpoint(solver, observer, progress, comm);
+      last_checkpoint = clock::now();
+    }
+    if (sched.kill_after_step > 0 && solver.steps() == sched.kill_after_step)
+      std::raise(SIGKILL); // tests of checkpoint and restart (RunSchedule)
   }
   // the energy accumulators as they stand (as one rank's solver().energy() at the end), and
   // the final state on rank 0 for the summary
@@ -122,6 +192,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   if (!gathered_all)
     solver.gather(true);
   res.steps = solver.steps();
+  res.steps_made = solver.steps() - first_step;
   res.time = solver.time();
   res.energy = solver.energy();
   res.energy_balance_error = progress.worst_error;

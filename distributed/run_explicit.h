@@ -6,19 +6,35 @@
 // figures summed over the ranks at each record, the particles of the groups gathered at each
 // record and every particle and bond state at snapshots and at the end), so that the history,
 // ParaView files and summary a one-rank observer writes come out the same.
-// Not yet on several ranks (the caller refuses them): checkpoints, contacts and walls (forces
-// beside the bonds), the static solver, more than 32 groups.
+// Checkpoints as on one rank (RunSchedule), written collectively: every rank gathers the run's
+// state into rank 0's report solver at the same step (run_checkpoint.h), rank 0's observer
+// writes it, and every rank learns whether the write failed (and then throws its error). A
+// checkpoint so written holds the whole run, and resumes on any number of ranks.
+// Not yet on several ranks (unsupported_on_ranks): the contact monitor, more than 32 groups, a
+// checkpoint of a pressure load; the static solver (the caller refuses it).
 #include "dem/solvers/run_explicit.h"
 #include <deal.II/base/mpi.h>
+#include <functional>
 
 namespace dembridge::distributed
 {
+/// A resumed run: the ranks other than 0 read the checkpoint with @p read (rank 0's observer
+/// reads it in on_start).
+struct Resume
+{
+  bool resume = false;
+  /// Calls the visit with the checkpoint's archive.
+  std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
+};
+
 /// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used. On
 /// return rank 0's model holds the final state; the other ranks' model has given up its
 /// particles and bonds (each rank kept only its part after the setup).
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,
-                            dem::RunObserver* observer, dem::RunSchedule schedule, MPI_Comm comm);
+                            dem::RunObserver* observer, dem::RunSchedule schedule, MPI_Comm comm,
+                            const Resume& resume = {});
 
-/// Why a model cannot run on several ranks yet (empty: it can).
-std::string unsupported_on_ranks(const dem::Model& model);
+/// Why a model cannot run on several ranks yet (empty: it can); @p checkpoints: with
+/// checkpoints or a resume.
+std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints = false);
 } // namespace dembridge::distributed

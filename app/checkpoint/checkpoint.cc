@@ -215,9 +215,22 @@ void check_staged_history(const fs::path& file)
   }
 }
 
+/// Whether a DEM checkpoint was written by the run on several ranks (distributed/): its contacts
+/// are held by global ids (solver/contribution_0/ranks), not in the one-rank layout. Such a run
+/// on one rank (resumed from several) writes them so too.
+bool holds_contacts_of_ranks(const fs::path& file)
+{
+  Handle h = open_checkpoint(file);
+  for (const char* group : {"solver", "solver/contribution_0", "solver/contribution_0/ranks"})
+    if (H5Lexists(h.get(), group, H5P_DEFAULT) <= 0)
+      return false;
+  return true;
+}
+
 /// A fresh run refuses a folder that holds a checkpoint; a resumed one reads the checkpoint's
-/// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time).
-void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
+/// header and refuses another format, case or number of MPI ranks (@p s.resumed_step, time);
+/// @p any_ranks: a checkpoint written on several ranks resumes on any number (a DEM run's).
+void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir, bool any_ranks)
 {
   if (!s.resume)
   {
@@ -241,8 +254,10 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir)
   verify_checkpoint(s.file); // every byte it holds, before anything is built or staged
   const CheckpointHeader h = read_checkpoint_header(s.file);
   check_same_case(h, s.case_text, s.file);
-  // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split
-  if (h.mpi_ranks != s.ranks)
+  // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split.
+  // A DEM run on several ranks writes the whole run; on one its contacts in one store's layout.
+  s.whole_run = any_ranks && (h.mpi_ranks > 1 || holds_contacts_of_ranks(s.file));
+  if (h.mpi_ranks != s.ranks && !s.whole_run)
     throw InputError(s.file.string() + ": the checkpoint was written by a run on " +
                      std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
                      std::to_string(s.ranks) + " (resume it with mpirun -np " +
@@ -280,10 +295,10 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     throw InputError(s.case_name + ": " + (s.resume ? "--resume" : key) +
                      ": a static FE run (FEM/problem = static) has no time steps to checkpoint "
                      "(FE dynamics, DEM and coupled runs are checkpointed)");
-  // why: a continuum (coupled or FE run) is split over the ranks; each DEM process runs it all
+  // why: a continuum (coupled or FE run) and a DEM run's particles are split over the ranks
   const bool mpi = dealii::Utilities::MPI::job_supports_mpi();
   const bool root = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  if ((mode == "coupled" || mode == "fem") && mpi)
+  if (mpi)
     s.ranks = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
   s.file = fs::absolute(fs::path(output_dir) / "checkpoint.h5").lexically_normal();
   s.case_text = checkpoint_case_text(prm, fs::absolute(case_file).parent_path());
@@ -292,7 +307,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
   if (root)
     try
     {
-      check_checkpoint_file(s, output_dir);
+      check_checkpoint_file(s, output_dir, mode == "dem");
     }
     catch (const std::exception& e)
     {
@@ -303,6 +318,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     refused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refused, 0);
     s.resumed_step = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_step, 0);
     s.resumed_time = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_time, 0);
+    s.whole_run = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.whole_run, 0);
   }
   if (!refused.empty())
     throw InputError(refused);

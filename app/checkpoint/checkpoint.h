@@ -39,7 +39,10 @@ struct CheckpointSettings
   double interval = 0;        ///< simulated time between checkpoints, s; 0: none
   double wall_interval = 0;   ///< wall time between checkpoints, s; 0: none
   bool resume = false;        ///< restore from `file` before the first step
-  int ranks = 1;              ///< MPI ranks of a coupled or FE run (1 for a DEM run)
+  int ranks = 1;              ///< MPI ranks of the run
+  /// resume: a DEM checkpoint of the run on several ranks (distributed/run_checkpoint.h), which
+  /// resumes on any number of ranks
+  bool whole_run = false;
   long resumed_step = 0;      ///< the checkpoint's step and time (resume)
   double resumed_time = 0;
   std::string case_name; ///< the case file's name (messages, header)
@@ -58,7 +61,9 @@ struct CheckpointSettings
 ///    history file in DIR/.partial checked against it, so that a damaged or incomplete one is
 ///    refused before anything is built or staged;
 ///  - refused: checkpoints or --resume in a static FE run (FEM/problem = static: no steps;
-///    InputError naming the key), a coupled or FE checkpoint of another number of MPI ranks.
+///    InputError naming the key), a coupled or FE checkpoint of another number of MPI ranks, a
+///    DEM checkpoint of one rank on several (a DEM checkpoint of several ranks resumes on any
+///    number: it holds the whole run, distributed/run_checkpoint.h).
 /// Collective on MPI_COMM_WORLD when MPI is running: rank 0 reads the file, every rank throws
 /// its verdict.
 CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,

@@ -55,7 +55,7 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
     schedule.kill_after_step = std::atol(kill);
   ExplicitCaseRun run;
-  run.result = run_explicit_on_ranks(model, config, observer, schedule);
+  run.result = run_explicit_on_ranks(model, config, observer, schedule, checkpoint);
   const dem::RunResult& r = run.result;
   observer.finish();
   run.history = observer.load_history();

@@ -11,12 +11,25 @@ unsigned n_ranks()
 {
   return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
 }
+
+/// On several ranks, or resuming a checkpoint written on several (which holds the contacts by
+/// global ids, not in the one-rank layout; distributed/run_checkpoint.h).
+bool on_ranks(const CheckpointSettings& checkpoint)
+{
+  return n_ranks() > 1 || (checkpoint.resume && checkpoint.whole_run);
+}
+
+distributed::Resume resume_of(const CheckpointSettings& checkpoint)
+{
+  return {checkpoint.resume,
+          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
+}
 } // namespace
 
 bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model,
                                 const CheckpointSettings& checkpoint)
 {
-  if (n_ranks() == 1)
+  if (!on_ranks(checkpoint))
     return false;
   if (config.run.static_solver) // the solves shared by the ranks, rank 0 writes
   {
@@ -25,25 +38,23 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
     solve_static_on_other_rank(model, config);
     return true;
   }
-  if (checkpoint.resume)
-    throw dem::InputError("--resume: DEM runs on several MPI ranks do not checkpoint yet (resume "
-                          "on one rank)");
-  if (checkpoint.enabled())
-    throw dem::InputError("Output/checkpoint interval: DEM runs on several MPI ranks do not "
-                          "checkpoint yet (set it to 0, or run on one rank)");
-  if (const std::string why = distributed::unsupported_on_ranks(model); !why.empty())
+  if (const std::string why =
+          distributed::unsupported_on_ranks(model, checkpoint.enabled() || checkpoint.resume);
+      !why.empty())
     throw dem::InputError(why);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     return false;
-  distributed::run_explicit(model, config, nullptr, {}, MPI_COMM_WORLD);
+  distributed::run_explicit(model, config, nullptr, {}, MPI_COMM_WORLD, resume_of(checkpoint));
   return true;
 }
 
 dem::RunResult run_explicit_on_ranks(dem::Model& model, const dem::CaseConfig& config,
-                                     dem::RunObserver& observer, const dem::RunSchedule& schedule)
+                                     dem::RunObserver& observer, const dem::RunSchedule& schedule,
+                                     const CheckpointSettings& checkpoint)
 {
-  if (n_ranks() == 1)
+  if (!on_ranks(checkpoint))
     return dem::run_explicit(model, config, observer, schedule);
-  return distributed::run_explicit(model, config, &observer, schedule, MPI_COMM_WORLD);
+  return distributed::run_explicit(model, config, &observer, schedule, MPI_COMM_WORLD,
+                                   resume_of(checkpoint));
 }
 } // namespace dembridge::app

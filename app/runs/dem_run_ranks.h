@@ -2,21 +2,25 @@
 // A DEM run (Mode = dem) under `mpirun -np N` with N > 1: the explicit solver's time stepping
 // spread over the ranks on deal.II's particle handler (distributed/, docs/parallel.md). Every
 // rank reads the case and builds the same model; rank 0 runs the usual observer and summary
-// over the whole model, the other ranks only step their parts.
+// over the whole model, the other ranks only step their parts. Checkpoints are written by rank 0
+// with the whole run's state and resume on any number of ranks (distributed/run_checkpoint.h).
 #include "app/checkpoint/checkpoint.h"
 #include "dem/model/model.h"
 #include "dem/solvers/run_explicit.h"
 
 namespace dembridge::app
 {
-/// Call on every rank once the model is built. On one rank: false. On several: throws (on
+/// Call on every rank once the model is built. On one rank (unless it resumes a checkpoint
+/// written on several): false. On several: throws (on
 /// every rank alike) what cannot run there yet; then a rank other than 0 steps its part of
 /// the run and returns true (its caller is done), rank 0 returns false and goes on to
 /// run_explicit_on_ranks.
 bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model,
                                 const CheckpointSettings& checkpoint);
 
-/// dem::run_explicit, on as many ranks as the run has.
+/// dem::run_explicit, on as many ranks as the run has (distributed also on one rank when it
+/// resumes a checkpoint written on several).
 dem::RunResult run_explicit_on_ranks(dem::Model& model, const dem::CaseConfig& config,
-                                     dem::RunObserver& observer, const dem::RunSchedule& schedule);
+                                     dem::RunObserver& observer, const dem::RunSchedule& schedule,
+                                     const CheckpointSettings& checkpoint);
 } // namespace dembridge::app

@@ -1,10 +1,10 @@
 # Every command under `mpirun -np N` (included by tests/app/CMakeLists.txt): it works, or it
 # refuses within 60 s with one line on rank 0's stderr, nothing on the others', exit code 1 and
-# no folder (tests/app/expect_error_mpi.sh). Explicit particle runs work, with contacts and walls,
-# and so does the static DEM solver (tests/distributed); DEM checkpoints and the contact monitor
-# refuse on more than one rank; FE and coupled runs work (coupled_compression_np2 in
-# tests/coupling, checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in
-# checkpoint_tests.cmake).
+# no folder (tests/app/expect_error_mpi.sh). Explicit particle runs work, with contacts, walls
+# and checkpoints, and so does the static DEM solver (tests/distributed); the contact monitor, a
+# static run's checkpoints and a pressure load's checkpoints refuse on more than one rank; FE and
+# coupled runs work (coupled_compression_np2 and the coupled beams in tests/coupling,
+# checkpoint_resume_fem_np2 and checkpoint_resume_coupled_np2 in checkpoint_tests.cmake).
 if(MPIEXEC_EXECUTABLE)
   # mpi_error_test(name np regex subcommand args...): mpi_npNP_name, a minute at most
   function(mpi_error_test name np regex)
@@ -26,15 +26,20 @@ if(MPIEXEC_EXECUTABLE)
   # tests/distributed); the record of the first contact does not
   mpi_error_test(run_dem_contact_monitor 2 "contact_two_spheres.prm: Contacts/monitor: the first contact's record does not run on several MPI ranks"
                  run ${EX}/contact_two_spheres.prm)
-  mpi_error_test(checkpoint_dem 2 "cantilever.prm: Output/checkpoint interval: DEM runs on several MPI ranks do not checkpoint yet"
-                 run ${EX}/cantilever.prm --set "Output/checkpoint interval=0.01")
-  # a DEM checkpoint written on one rank (the run killed after 3,000 steps), resumed on two:
-  # refused in one line, exit code 1, the checkpoint and the staged files kept
+  # DEM checkpoints written on several ranks resume on any number (tests/distributed:
+  # distributed_compression_failure_resume); one written on one rank (the run killed after 3,000
+  # steps), whose contacts are one store's, resumes on one only: on two refused in one line naming
+  # both counts, exit code 1, the checkpoint and the staged files kept
   app_python_test(mpi_np2_resume_dem checkpoint_ranks.py $<TARGET_FILE:dembridge>
     ${MPIEXEC_EXECUTABLE} ${EX}/cantilever.prm ${OUT}/mpi_np2_resume_dem --ranks 1:2
     --kill-after-step 3000 --kept .partial/history.csv.part
-    --refusal "^dembridge: error: cantilever.prm: --resume: DEM runs on several MPI ranks do not checkpoint yet"
     --set "Output/checkpoint interval=0.001" TIMEOUT 120 PROCESSORS 2 MPI_ENV)
+  # the pressure of a pressure load's last step is the solver's state, not gathered from the
+  # ranks: its checkpoints are refused on several ranks (columnar_biaxial.prm cut down as in
+  # checkpoint_resume_pressure)
+  mpi_error_test(checkpoint_dem_pressure 2 "^dembridge: error: columnar_biaxial.prm: Load confine/type: a pressure load is not checkpointed on several MPI ranks yet"
+                 run ${EX}/columnar_biaxial.prm --set "Particles/box size=0.04, 0.04, 0.03"
+                 --set "Output/checkpoint interval=0.001")
   mpi_error_test(verify 2 "^dembridge: error: verify runs on one MPI rank \\(the FE model is small\\), this job has 2"
                  verify ${EX}/compression_cubic.prm --youngs-modulus 3e9 --poisson-ratio 0.2)
   mpi_error_test(elasticity 2 "^dembridge: error: elasticity runs on one MPI rank"
