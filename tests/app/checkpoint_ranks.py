@@ -13,7 +13,7 @@ one line on rank 0's stderr naming both rank counts (the other ranks print nothi
 before any step, leaving the checkpoint.
 --ranks W:R: written on W ranks, resumed on R, instead (repeated: each pair).
 --refusal REGEX: rank 0's line matches REGEX instead of naming the rank counts (a refusal for
-another reason, such as a DEM run that does not checkpoint on several ranks).
+another reason, such as a one-rank DEM checkpoint resumed on several ranks).
 --kept FILE: FILE (in the run's folder) is still there and not empty after the refusal.
 Plain python3.
 """
