@@ -1,8 +1,8 @@
 #include "app/checkpoint/checkpoint.h"
 #include "app/checkpoint/hdf5_archive.h"
+#include "app/input/case_scan.h"
 #include "app/job/provenance.h"
 #include "app/job/version.h"
-#include "app/input/case_scan.h"
 #include "dem/core/fsync_path.h"
 #include <array>
 #include <csignal>

@@ -29,7 +29,8 @@ namespace dembridge::app
 /// Version 3: history.csv's length at the checkpoint (`history_bytes`) instead of its text.
 /// Version 4: FE dynamics runs store running summaries of their energies and zero crossings
 /// instead of the series (one value a step). Version 5: every dataset carries its CRC-32
-/// (attribute crc32), in HDF5's file format 1.8 (checksummed metadata); the bonds' classes (`bond_class`).
+/// (attribute crc32), in HDF5's file format 1.8 (checksummed metadata); the bonds' classes
+/// (`bond_class`).
 inline constexpr int checkpoint_format_version = 5;
 inline constexpr const char* checkpoint_format_name = "dembridge-checkpoint";
 
@@ -43,7 +44,7 @@ struct CheckpointSettings
   /// resume: a DEM checkpoint of the run on several ranks (distributed/run_checkpoint.h), which
   /// resumes on any number of ranks
   bool whole_run = false;
-  long resumed_step = 0;      ///< the checkpoint's step and time (resume)
+  long resumed_step = 0; ///< the checkpoint's step and time (resume)
   double resumed_time = 0;
   std::string case_name; ///< the case file's name (messages, header)
   std::string case_text; ///< checkpoint_case_text() of this run
