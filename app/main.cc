@@ -74,12 +74,12 @@ int main(int argc, char** argv)
     }
     if (*elasticity_cmd)
     {
-      job.require_one_rank("elasticity", "the static solver is serial");
+      job.require_one_rank("elasticity", "its static solves are not shared over ranks");
       return app::run_elasticity(elasticity);
     }
     if (*calibrate_cmd)
     {
-      job.require_one_rank("calibrate", "the static solver is serial");
+      job.require_one_rank("calibrate", "its static solves are not shared over ranks");
       return app::run_calibrate(calibrate);
     }
 #ifdef DEMBRIDGE_HAVE_COUPLING

@@ -152,8 +152,9 @@ void declare_simulation_section(ParameterHandler& prm)
                     "Static solver's iterative solve: cg = Jacobi-preconditioned conjugate "
                     "gradients (Eigen), gamg = CG with PETSc's algebraic multigrid (iterations "
                     "nearly flat in the particle count), auto = gamg from 150,000 unknowns "
-                    "where PETSc is built in, else cg. Small and banded systems are factorised "
-                    "whatever this says.");
+                    "where PETSc is built in, else cg. On one rank small and banded systems are "
+                    "factorised whatever this says; under mpirun every system is solved on the "
+                    "ranks by PETSc (gamg, or CG for cg).");
   prm.declare_entry("load steps", "1", Integer(1, 100000),
                     "Static solver: equilibria at t_k = k end time / N, k = 1..N, one history.csv "
                     "row each (the last is the final state).");
