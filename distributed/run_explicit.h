@@ -27,12 +27,19 @@ struct Resume
   std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
 };
 
-/// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used. On
+/// Writes a snapshot's particles in pieces, on every rank (collective): the first @p n_owned
+/// particles of the rank's store (owned ones; ghosts after them), with the rank's bonds.
+using SnapshotPieces = std::function<void(const dem::ParticleStore& p, std::size_t n_owned,
+                                          const dem::BondStore& b, double time, long step)>;
+
+/// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used.
+/// @p pieces (every rank passes one, or none): at each snapshot, before rank 0's observer
+/// writes the rest of it. On
 /// return rank 0's model holds the final state; the other ranks' model has given up its
 /// particles and bonds (each rank kept only its part after the setup).
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,
                             dem::RunObserver* observer, dem::RunSchedule schedule, MPI_Comm comm,
-                            const Resume& resume = {});
+                            const Resume& resume = {}, const SnapshotPieces& pieces = {});
 
 /// Why a model cannot run on several ranks yet (empty: it can); @p checkpoints: with
 /// checkpoints or a resume.
