@@ -147,8 +147,11 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
       if (report || snapshot)
         solver.gather(snapshot), gathered_all = snapshot;
       if (snapshot && pieces)
+      {
+        solver.share_ghost_references();
         pieces(solver.particles().particles(), solver.particles().n_owned(),
                solver.particles().bonds(), solver.time(), solver.steps());
+      }
       if (root && observer && report)
         observer->on_record(*solver.report());
       if (root && observer && snapshot)
