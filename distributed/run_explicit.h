@@ -5,7 +5,8 @@
 // report solver over the whole model, which holds what a one-rank run's solver would (the
 // figures summed over the ranks at each record, the particles of the groups gathered at each
 // record and every particle and bond state at snapshots and at the end), so that the history,
-// ParaView files and summary a one-rank observer writes come out the same.
+// ParaView files and summary a one-rank observer writes come out the same (with SnapshotPieces
+// the particles' snapshots are written by every rank, its own particles).
 // Checkpoints as on one rank (RunSchedule), written collectively: every rank gathers the run's
 // state into rank 0's report solver at the same step (run_checkpoint.h), rank 0's observer
 // writes it, and every rank learns whether the write failed (and then throws its error). A

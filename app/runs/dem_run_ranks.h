@@ -2,7 +2,8 @@
 // A DEM run (Mode = dem) under `mpirun -np N` with N > 1: the explicit solver's time stepping
 // spread over the ranks on deal.II's particle handler (distributed/, docs/parallel.md). Every
 // rank reads the case and builds the same model; rank 0 runs the usual observer and summary
-// over the whole model, the other ranks only step their parts. Checkpoints are written by rank 0
+// over the whole model, the other ranks step their parts and write their particles' pieces of
+// each snapshot (ParticlePieces). Checkpoints are written by rank 0
 // with the whole run's state and resume on any number of ranks (distributed/run_checkpoint.h).
 #include "app/checkpoint/checkpoint.h"
 #include "app/output/particle_vtu.h"
