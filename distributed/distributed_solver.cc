@@ -462,4 +462,33 @@ void DistributedSolver::gather(bool all)
   }
   report_->set_running_state(std::move(state));
 }
+
+void DistributedSolver::share_ghost_references()
+{
+  dem::ParticleStore& p = particles_.particles();
+  const auto& ids = particles_.global_ids();
+  const std::size_t owned = particles_.n_owned();
+  // every rank's ghosts to every rank, each answered by its owner (snapshots only: O(ghosts))
+  const std::vector<std::int64_t> wanted(ids.begin() + long(owned), ids.end());
+  const auto all_wanted = dealii::Utilities::MPI::all_gather(comm_, wanted);
+  std::unordered_map<std::int64_t, std::size_t> local;
+  for (std::size_t i = 0; i < owned; ++i)
+    local.emplace(ids[i], i);
+  std::vector<double> answers;
+  for (const auto& ghosts_of_rank : all_wanted)
+    for (const std::int64_t id : ghosts_of_rank)
+      if (const auto it = local.find(id); it != local.end())
+      {
+        const Vec3& x = p.reference_position[it->second];
+        answers.insert(answers.end(), {double(id), x[0], x[1], x[2]});
+      }
+  local.clear();
+  for (std::size_t i = owned; i < p.size(); ++i)
+    local.emplace(ids[i], i);
+  for (const auto& from_rank : dealii::Utilities::MPI::all_gather(comm_, answers))
+    for (std::size_t at = 0; at < from_rank.size(); at += 4)
+      if (const auto it = local.find(std::int64_t(from_rank[at])); it != local.end())
+        p.reference_position[it->second] =
+            Vec3(from_rank[at + 1], from_rank[at + 2], from_rank[at + 3]);
+}
 } // namespace dembridge::distributed

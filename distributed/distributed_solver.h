@@ -57,6 +57,10 @@ public:
   /// every bond's state, the support reactions, the running sums over the ranks (the contacts'
   /// too) and every contact's history: what the one-rank checkpoint of the report solver holds.
   void gather_for_checkpoint();
+  /// Collective, before the ranks write their particles (a snapshot in pieces): the ghosts take
+  /// their owners' reference positions, which the per-step exchange does not carry and the
+  /// stress of an owned particle reads (its bonds' displacements, particle_stress.h).
+  void share_ghost_references();
 
   double time() const { return local_->time(); }
   long steps() const { return local_->steps(); }

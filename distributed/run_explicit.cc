@@ -56,7 +56,8 @@ void write_checkpoint(DistributedSolver& solver, dem::RunObserver* observer,
 } // namespace
 
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::RunObserver* observer,
-                            dem::RunSchedule sched, MPI_Comm comm, const Resume& resume)
+                            dem::RunSchedule sched, MPI_Comm comm, const Resume& resume,
+                            const SnapshotPieces& pieces)
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -142,8 +143,15 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
       const bool report = n % sched.record_interval == 0 || n == 1 || stop;
       const bool snapshot =
           n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0);
+      // the bond files and the crack output read every particle and bond on rank 0
       if (report || snapshot)
         solver.gather(snapshot), gathered_all = snapshot;
+      if (snapshot && pieces)
+      {
+        solver.share_ghost_references();
+        pieces(solver.particles().particles(), solver.particles().n_owned(),
+               solver.particles().bonds(), solver.time(), solver.steps());
+      }
       if (root && observer && report)
         observer->on_record(*solver.report());
       if (root && observer && snapshot)

@@ -5,7 +5,8 @@
 // report solver over the whole model, which holds what a one-rank run's solver would (the
 // figures summed over the ranks at each record, the particles of the groups gathered at each
 // record and every particle and bond state at snapshots and at the end), so that the history,
-// ParaView files and summary a one-rank observer writes come out the same.
+// ParaView files and summary a one-rank observer writes come out the same (with SnapshotPieces
+// the particles' snapshots are written by every rank, its own particles).
 // Checkpoints as on one rank (RunSchedule), written collectively: every rank gathers the run's
 // state into rank 0's report solver at the same step (run_checkpoint.h), rank 0's observer
 // writes it, and every rank learns whether the write failed (and then throws its error). A
@@ -27,12 +28,19 @@ struct Resume
   std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
 };
 
-/// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used. On
+/// Writes a snapshot's particles in pieces, on every rank (collective): the first @p n_owned
+/// particles of the rank's store (owned ones; ghosts after them), with the rank's bonds.
+using SnapshotPieces = std::function<void(const dem::ParticleStore& p, std::size_t n_owned,
+                                          const dem::BondStore& b, double time, long step)>;
+
+/// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used.
+/// @p pieces (every rank passes one, or none): at each snapshot, before rank 0's observer
+/// writes the rest of it. On
 /// return rank 0's model holds the final state; the other ranks' model has given up its
 /// particles and bonds (each rank kept only its part after the setup).
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,
                             dem::RunObserver* observer, dem::RunSchedule schedule, MPI_Comm comm,
-                            const Resume& resume = {});
+                            const Resume& resume = {}, const SnapshotPieces& pieces = {});
 
 /// Why a model cannot run on several ranks yet (empty: it can); @p checkpoints: with
 /// checkpoints or a resume.

@@ -3,6 +3,7 @@
 #include "app/output/particle_vtu_file.h"
 #include "dem/bonds/bond_stress.h"
 #include "dem/measurements/particle_stress.h"
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -13,14 +14,18 @@ namespace dembridge::app
 namespace
 {
 /// Points in the user's numbering (the stores are in spatial order, renumbering.h): point j is
-/// the particle with id j, so the files do not depend on the internal order.
+/// the particle with the j-th smallest id (on one rank the particle with id j), so the files do
+/// not depend on the internal order. A piece of a run on several ranks: its first @p n particles
+/// (the rank's own).
 class UserOrder
 {
 public:
-  explicit UserOrder(const dem::ParticleStore& p) : at_(p.size())
+  UserOrder(const dem::ParticleStore& p, std::size_t n) : at_(n)
   {
-    for (std::size_t i = 0; i < p.size(); ++i)
-      at_[std::size_t(p.id[i])] = i;
+    for (std::size_t i = 0; i < n; ++i)
+      at_[i] = i;
+    std::sort(at_.begin(), at_.end(),
+              [&](std::size_t x, std::size_t y) { return p.id[x] < p.id[y]; });
   }
   /// The store index of point j.
   std::size_t operator[](std::size_t j) const { return at_[j]; }
@@ -55,7 +60,7 @@ private:
 void add_particle_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondStore& b,
                        const UserOrder& at)
 {
-  const std::size_t n = p.size();
+  const std::size_t n = at.size();
   file.point_data("radius", at.scalars(p.radius));
   file.point_data(
       "displacement",
@@ -69,9 +74,9 @@ void add_particle_data(VtuFile& file, const dem::ParticleStore& p, const dem::Bo
   const std::vector<int> coordination = at.scalars(p.coordination);
   file.point_data("coordination",
                   std::vector<std::int32_t>(coordination.begin(), coordination.end()));
-  std::vector<std::int64_t> id(n); // the user's numbering: point j is particle j
+  std::vector<std::int64_t> id(n); // the user's numbering (one rank: point j is particle j)
   for (std::size_t j = 0; j < n; ++j)
-    id[j] = std::int64_t(j);
+    id[j] = std::int64_t(p.id[at[j]]);
   file.point_data("id", id);
   if (!p.grain.empty()) // the microstructure's grain of each particle
     file.point_data("grain_id", at.scalars(p.grain));
@@ -141,6 +146,28 @@ void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondSt
                                                                dem::bond_class_names.end()));
   }
 }
+
+/// The particles' file: the first @p n particles of the store as vertices with point data.
+VtuFile particle_file(const dem::ParticleStore& p, std::size_t n, const dem::BondStore& b,
+                      const std::vector<std::string>& group_names)
+{
+  const UserOrder at(p, n);
+  std::vector<dem::Vec3> points(n);
+  for (std::size_t j = 0; j < n; ++j)
+    points[j] = p.position[at[j]];
+  VtuFile file(points, VtuFile::Cells::vertices);
+  add_particle_data(file, p, b, at);
+  file.field_strings("group_names", group_names);
+  return file;
+}
+
+/// particles_NNNNNN: the snapshot's name without extension.
+std::string particle_stem(std::size_t index)
+{
+  char tag[32];
+  std::snprintf(tag, sizeof tag, "particles_%06zu", index);
+  return tag;
+}
 } // namespace
 
 void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time,
@@ -149,21 +176,22 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
   const std::size_t n = p.size();
-  const UserOrder at(p);
-  std::vector<dem::Vec3> points(n);
-  for (std::size_t j = 0; j < n; ++j)
-    points[j] = p.position[at[j]];
-  // Particles: vertices with point data
+  // Particles: vertices with point data (on several ranks the ranks' pieces and their record
+  // are written by ParticlePieces)
+  if (pieces_)
+    particle_files_.emplace_back(time, particle_stem(particle_files_.size()) + ".pvtu");
+  else
   {
-    VtuFile file(points, VtuFile::Cells::vertices);
-    add_particle_data(file, p, b, at);
-    file.field_strings("group_names", group_names_);
-    const std::string name = std::string("particles_") + tag + ".vtu";
-    file.write(dir_ / name, time, step);
+    const std::string name = particle_stem(particle_files_.size()) + ".vtu";
+    particle_file(p, n, b, group_names_).write(dir_ / name, time, step);
     particle_files_.emplace_back(time, name);
   }
   // Bonds: line cells between the particle centres, the bond's quantities as cell data
   {
+    const UserOrder at(p, n);
+    std::vector<dem::Vec3> points(n);
+    for (std::size_t j = 0; j < n; ++j)
+      points[j] = p.position[at[j]];
     VtuFile file(points, VtuFile::Cells::lines);
     add_bond_data(file, p, b);
     std::vector<std::int64_t> particle_id(n);
@@ -175,6 +203,47 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
     file.write(dir_ / name, time, step);
     bond_files_.emplace_back(time, name);
   }
+}
+
+ParticlePieces::ParticlePieces(std::filesystem::path dir, std::vector<std::string> group_names,
+                               MPI_Comm comm, ParticleVtuSeries* series)
+    : dir_(std::move(dir)), group_names_(std::move(group_names)), comm_(comm), series_(series)
+{
+  if (series_)
+    series_->particles_in_pieces();
+}
+
+void ParticlePieces::write(const dem::ParticleStore& p, std::size_t n_owned,
+                           const dem::BondStore& b, double time, long step)
+{
+  const unsigned rank = dealii::Utilities::MPI::this_mpi_process(comm_);
+  const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm_);
+  // rank 0's series numbers the snapshots (a resumed run continues its checkpoint's list)
+  unsigned long index = series_ ? series_->particle_files().size() : 0;
+  MPI_Bcast(&index, 1, MPI_UNSIGNED_LONG, 0, comm_);
+  const std::string stem = particle_stem(index);
+  auto piece = [&](unsigned r) { return stem + "_r" + std::to_string(r) + ".vtu"; };
+  const VtuFile file = particle_file(p, n_owned, b, group_names_);
+  // every rank learns whether one could not write (then all throw the first such error)
+  std::string failed;
+  try
+  {
+    file.write(dir_ / piece(rank), time, step);
+    if (rank == 0)
+    {
+      std::vector<std::string> pieces;
+      for (unsigned r = 0; r < n_ranks; ++r)
+        pieces.push_back(piece(r));
+      file.write_pvtu(dir_ / (stem + ".pvtu"), pieces);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    failed = *e.what() ? e.what() : "ParaView piece: unknown error";
+  }
+  const unsigned first = dealii::Utilities::MPI::min(failed.empty() ? n_ranks : rank, comm_);
+  if (first < n_ranks)
+    throw std::runtime_error(dealii::Utilities::MPI::broadcast(comm_, failed, first));
 }
 
 void ParticleVtuSeries::visit_state(dem::StateArchive& a)
@@ -202,10 +271,16 @@ void remove_later_dem_snapshots(const std::filesystem::path& dir, const Particle
       listed.insert(f.second);
   for (const auto& entry : std::filesystem::directory_iterator(dir))
   {
-    const std::string name = entry.path().filename().string();
-    const bool snapshot = entry.path().extension() == ".vtu" &&
-                          (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
-                           name.rfind("cracks_", 0) == 0);
+    std::string name = entry.path().filename().string();
+    // a piece of a run on several ranks (particles_NNNNNN_rR.vtu) goes with its record
+    if (const auto r = name.rfind("_r");
+        name.rfind("particles_", 0) == 0 && r != name.npos && entry.path().extension() == ".vtu")
+      name = name.substr(0, r) + ".pvtu";
+    const bool record = entry.path().extension() == ".pvtu" && name.rfind("particles_", 0) == 0;
+    const bool snapshot =
+        record || (entry.path().extension() == ".vtu" &&
+                   (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||
+                    name.rfind("cracks_", 0) == 0));
     if (snapshot && !listed.count(name))
       std::filesystem::remove(entry.path());
   }

@@ -14,9 +14,13 @@
 //    field data class_names);
 //  - both: field data TIME, CYCLE (the step) and group_names (string array).
 // The .pvd time series are written by finish() (particle_vtu_file.h: write_pvd, no date).
+// A DEM run on several MPI ranks writes the particles in pieces (ParticlePieces): each rank its
+// own particles as particles_NNNNNN_rR.vtu (the same point data, ids included, in id order), rank
+// 0 the record particles_NNNNNN.pvtu over them, which particles.pvd lists.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/core/state_archive.h"
+#include <deal.II/base/mpi.h>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -32,6 +36,9 @@ public:
   {
   }
   void write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step);
+  /// From now on write() lists the particles' snapshot as the .pvtu record that ParticlePieces
+  /// writes (just before) and writes the bonds only.
+  void particles_in_pieces() { pieces_ = true; }
   /// Writes particles.pvd and bonds.pvd listing every snapshot.
   void finish() const;
   /// (time, file name relative to DIR) of every snapshot so far: particles and bonds.
@@ -47,9 +54,32 @@ private:
   std::filesystem::path dir_;
   std::vector<std::string> group_names_;
   std::vector<std::pair<double, std::string>> particle_files_, bond_files_;
+  bool pieces_ = false;
 };
 
-/// Removes the particle, bond and crack snapshots (particles_, bonds_, cracks_*.vtu) in @p dir
+/// The particle snapshots of a run on several MPI ranks: every rank writes its own particles as
+/// a piece particles_NNNNNN_rR.vtu of the snapshot that rank 0's series lists next, rank 0 also
+/// the record particles_NNNNNN.pvtu (rank 0's series then lists it: write()).
+class ParticlePieces
+{
+public:
+  /// @p series: rank 0's (it numbers the snapshots and lists the records); null on the others.
+  ParticlePieces(std::filesystem::path dir, std::vector<std::string> group_names, MPI_Comm comm,
+                 ParticleVtuSeries* series);
+  /// Collective: the piece of the first @p n_owned particles of the rank's store (@p b: the
+  /// bonds of those particles, for their stress); a failed write throws on every rank.
+  void write(const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b, double time,
+             long step);
+
+private:
+  std::filesystem::path dir_;
+  std::vector<std::string> group_names_;
+  MPI_Comm comm_;
+  ParticleVtuSeries* series_;
+};
+
+/// Removes the particle, bond and crack snapshots (particles_, bonds_, cracks_*.vtu, the
+/// particles' .pvtu records and their pieces) in @p dir
 /// that a run interrupted after its last checkpoint wrote: those not in the restored series of
 /// @p vtu and @p crack_files (they are written again). Warns of listed ones that are missing.
 void remove_later_dem_snapshots(const std::filesystem::path& dir, const ParticleVtuSeries& vtu,

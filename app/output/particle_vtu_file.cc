@@ -59,6 +59,16 @@ std::string data_array(const std::string& name, const std::vector<T>& v, int com
                            " values for " + std::to_string(tuples) + " tuples");
   return data_array(name, v.data(), v.size(), components);
 }
+/// The line of a .pvtu record that announces an array of the pieces.
+template <class T> std::string p_data_array(const std::string& name, int components)
+{
+  std::string xml = "<PDataArray type=\"" + std::string(vtk_type<T>()) + "\"";
+  if (!name.empty())
+    xml += " Name=\"" + name + "\"";
+  if (components > 1)
+    xml += " NumberOfComponents=\"" + std::to_string(components) + "\"";
+  return xml + "/>\n";
+}
 } // namespace
 
 std::string base64(const std::string& bytes)
@@ -122,30 +132,37 @@ void VtuFile::lines(const std::vector<std::int64_t>& pairs)
 void VtuFile::point_data(const std::string& name, const std::vector<double>& v, int components)
 {
   point_data_ += data_array(name, v, components, n_points_);
+  point_arrays_ += p_data_array<double>(name, components);
 }
 void VtuFile::point_data(const std::string& name, const std::vector<std::int32_t>& v)
 {
   point_data_ += data_array(name, v, 1, n_points_);
+  point_arrays_ += p_data_array<std::int32_t>(name, 1);
 }
 void VtuFile::point_data(const std::string& name, const std::vector<std::int64_t>& v)
 {
   point_data_ += data_array(name, v, 1, n_points_);
+  point_arrays_ += p_data_array<std::int64_t>(name, 1);
 }
 void VtuFile::point_data(const std::string& name, const std::vector<std::uint32_t>& v)
 {
   point_data_ += data_array(name, v, 1, n_points_);
+  point_arrays_ += p_data_array<std::uint32_t>(name, 1);
 }
 void VtuFile::cell_data(const std::string& name, const std::vector<double>& v, int components)
 {
   cell_data_ += data_array(name, v, components, n_cells_);
+  cell_arrays_ += p_data_array<double>(name, components);
 }
 void VtuFile::cell_data(const std::string& name, const std::vector<std::uint8_t>& v)
 {
   cell_data_ += data_array(name, v, 1, n_cells_);
+  cell_arrays_ += p_data_array<std::uint8_t>(name, 1);
 }
 void VtuFile::cell_data(const std::string& name, const std::vector<std::int64_t>& v)
 {
   cell_data_ += data_array(name, v, 1, n_cells_);
+  cell_arrays_ += p_data_array<std::int64_t>(name, 1);
 }
 
 void VtuFile::field_strings(const std::string& name, const std::vector<std::string>& values)
@@ -197,6 +214,22 @@ void VtuFile::write(const std::filesystem::path& file, double time, long step) c
       << cells_ << "</Cells>\n<PointData>\n"
       << point_data_ << "</PointData>\n<CellData>\n"
       << cell_data_ << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  out.close();
+}
+
+void VtuFile::write_pvtu(const std::filesystem::path& file,
+                         const std::vector<std::string>& pieces) const
+{
+  dem::OutputFile out(file); // failures name the file and the reason
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n<PUnstructuredGrid GhostLevel=\"0\">\n<PPoints>\n"
+      << p_data_array<double>("", 3) << "</PPoints>\n<PPointData>\n"
+      << point_arrays_ << "</PPointData>\n<PCellData>\n"
+      << cell_arrays_ << "</PCellData>\n";
+  for (const auto& piece : pieces)
+    out << "<Piece Source=\"" << piece << "\"/>\n";
+  out << "</PUnstructuredGrid>\n</VTKFile>\n";
   out.close();
 }
 } // namespace dembridge::app

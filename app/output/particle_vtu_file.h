@@ -39,10 +39,14 @@ public:
 
   /// Writes the file (time and step as field data TIME and CYCLE); throws naming the file.
   void write(const std::filesystem::path& file, double time, long step) const;
+  /// Writes a ParaView record (.pvtu) of @p pieces, files like this one (the same point and
+  /// cell arrays); throws naming the file.
+  void write_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces) const;
 
 private:
   std::size_t n_points_, n_cells_;
   std::string points_, cells_, point_data_, cell_data_, field_data_;
+  std::string point_arrays_, cell_arrays_; ///< their PDataArray lines (write_pvtu)
 };
 
 /// A ParaView collection (.pvd) of (time, file) entries; unlike deal.II's it carries no date, so

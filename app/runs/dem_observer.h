@@ -40,6 +40,8 @@ public:
   /// The axial and flexural histories recorded so far.
   LoadHistory load_history() const;
   const CrackOutput& cracks() const { return cracks_; }
+  /// The ParaView series of the particles and bonds; null when none is written.
+  ParticleVtuSeries* particle_snapshots() { return write_vtu_ ? &vtu_ : nullptr; }
   /// Largest kinetic share KE / (KE + strain energy) over the second half of the run, and the
   /// last one: how quasi-static the loading was.
   std::pair<double, double> kinetic_share() const;

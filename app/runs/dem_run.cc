@@ -55,7 +55,8 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
   if (const char* kill = std::getenv("DEMBRIDGE_TEST_KILL_AFTER_STEP")) // tests (checkpoint.h)
     schedule.kill_after_step = std::atol(kill);
   ExplicitCaseRun run;
-  run.result = run_explicit_on_ranks(model, config, observer, schedule, checkpoint);
+  run.result = run_explicit_on_ranks(model, config, observer, schedule, checkpoint, dir,
+                                     observer.particle_snapshots());
   const dem::RunResult& r = run.result;
   observer.finish();
   run.history = observer.load_history();
@@ -110,7 +111,7 @@ nlohmann::json run_dem_case(dealii::ParameterHandler& prm, const std::filesystem
   checkpoint.wall_interval = out.checkpoint_wall_interval;
   refuse_static_checkpoints(config, checkpoint);
   dem::Model model = dem::build_model(config);
-  if (run_dem_case_on_other_rank(config, model, checkpoint)) // mpirun -np N: rank 0 writes
+  if (run_dem_case_on_other_rank(config, model, checkpoint, dir, out.write_vtu)) // mpirun -np N
     return {};
   std::printf("DEM: %zu particles, %zu bonds (%s), time step %.4g s (critical %.4g s; thesis "
               "eq. 48: %.4g s)\n",

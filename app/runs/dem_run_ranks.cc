@@ -2,6 +2,7 @@
 #include "app/runs/dem_static_run.h"
 #include "distributed/run_explicit.h"
 #include <deal.II/base/mpi.h>
+#include <memory>
 
 namespace dembridge::app
 {
@@ -24,10 +25,21 @@ distributed::Resume resume_of(const CheckpointSettings& checkpoint)
   return {checkpoint.resume,
           [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
 }
+/// On several ranks: every rank writes its particles' piece of each snapshot (ParticlePieces).
+distributed::SnapshotPieces pieces_of(const dem::Model& model, const std::filesystem::path& dir,
+                                      bool write_vtu, ParticleVtuSeries* series)
+{
+  if (!write_vtu || n_ranks() < 2)
+    return {};
+  auto pieces = std::make_shared<ParticlePieces>(dir, group_names(model), MPI_COMM_WORLD, series);
+  return [pieces](const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b,
+                  double time, long step) { pieces->write(p, n_owned, b, time, step); };
+}
 } // namespace
 
 bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model,
-                                const CheckpointSettings& checkpoint)
+                                const CheckpointSettings& checkpoint,
+                                const std::filesystem::path& dir, bool write_vtu)
 {
   if (!on_ranks(checkpoint))
     return false;
@@ -44,17 +56,20 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
     throw dem::InputError(why);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     return false;
-  distributed::run_explicit(model, config, nullptr, {}, MPI_COMM_WORLD, resume_of(checkpoint));
+  distributed::run_explicit(model, config, nullptr, {}, MPI_COMM_WORLD, resume_of(checkpoint),
+                            pieces_of(model, dir, write_vtu, nullptr));
   return true;
 }
 
 dem::RunResult run_explicit_on_ranks(dem::Model& model, const dem::CaseConfig& config,
                                      dem::RunObserver& observer, const dem::RunSchedule& schedule,
-                                     const CheckpointSettings& checkpoint)
+                                     const CheckpointSettings& checkpoint,
+                                     const std::filesystem::path& dir, ParticleVtuSeries* snapshots)
 {
   if (!on_ranks(checkpoint))
     return dem::run_explicit(model, config, observer, schedule);
   return distributed::run_explicit(model, config, &observer, schedule, MPI_COMM_WORLD,
-                                   resume_of(checkpoint));
+                                   resume_of(checkpoint),
+                                   pieces_of(model, dir, snapshots != nullptr, snapshots));
 }
 } // namespace dembridge::app
