@@ -53,6 +53,85 @@ void write_checkpoint(DistributedSolver& solver, dem::RunObserver* observer,
   if (!failed.empty())
     throw std::runtime_error(failed);
 }
+
+/// The largest energy term so far and the worst balance error relative to it.
+void track_energy(dem::RunProgress& progress, const dem::EnergyBalance& e)
+{
+  progress.largest_seen = std::max(progress.largest_seen, e.largest());
+  if (progress.largest_seen > 0)
+    progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
+}
+
+/// A record step (collective): the energy tracked, rank 0's report solver filled (every
+/// particle and bond at a snapshot: the bond files and the crack output read them), the ranks'
+/// snapshot pieces written, rank 0's observer called. Returns whether everything was gathered.
+bool record_step(DistributedSolver& solver, dem::RunObserver* observer,
+                 const SnapshotPieces& pieces, const dem::RunSchedule& sched,
+                 dem::RunProgress& progress, long n, bool stop, bool root)
+{
+  track_energy(progress, solver.energy());
+  const bool report = n % sched.record_interval == 0 || n == 1 || stop;
+  const bool snapshot =
+      n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0);
+  if (report || snapshot)
+    solver.gather(snapshot);
+  if (snapshot && pieces)
+  {
+    solver.share_ghost_references();
+    pieces(solver.particles().particles(), solver.particles().n_owned(), solver.particles().bonds(),
+           solver.time(), solver.steps());
+  }
+  if (root && observer && report)
+    observer->on_record(*solver.report());
+  if (root && observer && snapshot)
+    observer->on_snapshot(*solver.report());
+  return snapshot;
+}
+
+/// Whether a checkpoint is due after the step that reached @p time (as on one rank,
+/// dem::run_explicit): the simulated interval, advanced past the step, or the wall interval by
+/// rank 0's clock (@p wall_due, broadcast: collective when a wall interval is set).
+bool checkpoint_due(const dem::RunSchedule& sched, dem::RunProgress& progress, double time,
+                    double time_step, bool wall_due, MPI_Comm comm)
+{
+  bool due = false;
+  if (sched.checkpoint_interval > 0 && time + 0.5 * time_step >= progress.next_checkpoint_time)
+  {
+    due = true;
+    while (progress.next_checkpoint_time <= time + 0.5 * time_step)
+      progress.next_checkpoint_time += sched.checkpoint_interval;
+  }
+  if (sched.checkpoint_wall_interval > 0)
+  {
+    int wall = wall_due;
+    MPI_Bcast(&wall, 1, MPI_INT, 0, comm);
+    due = due || wall;
+  }
+  return due;
+}
+
+/// The run's figures at its end (collective): the energy accumulators as they stand (as one
+/// rank's solver().energy() at the end), the final state on rank 0 for the summary (gathered
+/// unless the last record did), the deflection group's mean displacement.
+void finish_result(dem::RunResult& res, DistributedSolver& solver, const dem::RunProgress& progress,
+                   long first_step, bool gathered_all, int deflection_group,
+                   const dem::Vec3& direction)
+{
+  solver.reduce();
+  if (!gathered_all)
+    solver.gather(true);
+  res.steps = solver.steps();
+  res.steps_made = solver.steps() - first_step;
+  res.time = solver.time();
+  res.energy = solver.energy();
+  res.energy_balance_error = progress.worst_error;
+  res.unbalanced_force_ratio = solver.unbalanced_force_ratio();
+  if (deflection_group >= 0)
+  {
+    res.deflection_vector = solver.group_mean_displacement(deflection_group);
+    res.deflection = res.deflection_vector.dot(direction);
+  }
+}
 } // namespace
 
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::RunObserver* observer,
@@ -112,12 +191,6 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     ft.reserve(std::size_t(std::max(0L, expected)) + 2);
     fu.reserve(ft.capacity());
   }
-  auto track_energy = [&](const dem::EnergyBalance& e)
-  {
-    progress.largest_seen = std::max(progress.largest_seen, e.largest());
-    if (progress.largest_seen > 0)
-      progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
-  };
   auto last_progress = start, last_checkpoint = start;
   res.stop_reason = "end time";
   bool gathered_all = false;
@@ -136,27 +209,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     const bool stop = reason != nullptr;
     if (stop)
       res.stop_reason = reason;
-    gathered_all = false;
-    if (record)
-    {
-      track_energy(solver.energy());
-      const bool report = n % sched.record_interval == 0 || n == 1 || stop;
-      const bool snapshot =
-          n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0);
-      // the bond files and the crack output read every particle and bond on rank 0
-      if (report || snapshot)
-        solver.gather(snapshot), gathered_all = snapshot;
-      if (snapshot && pieces)
-      {
-        solver.share_ghost_references();
-        pieces(solver.particles().particles(), solver.particles().n_owned(),
-               solver.particles().bonds(), solver.time(), solver.steps());
-      }
-      if (root && observer && report)
-        observer->on_record(*solver.report());
-      if (root && observer && snapshot)
-        observer->on_snapshot(*solver.report());
-    }
+    gathered_all = record && record_step(solver, observer, pieces, sched, progress, n, stop, root);
     const auto now = clock::now();
     if (root && observer &&
         std::chrono::duration<double>(now - last_progress).count() > sched.progress_seconds)
@@ -170,23 +223,9 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     }
     if (stop)
       break;
-    // checkpoints as on one rank (dem::run_explicit); the wall clock is rank 0's
-    bool checkpoint = false;
-    if (sched.checkpoint_interval > 0 &&
-        solver.time() + 0.5 * model.time_step >= progress.next_checkpoint_time)
-    {
-      checkpoint = true;
-      while (progress.next_checkpoint_time <= solver.time() + 0.5 * model.time_step)
-        progress.next_checkpoint_time += sched.checkpoint_interval;
-    }
-    if (sched.checkpoint_wall_interval > 0)
-    {
-      int due = root && std::chrono::duration<double>(now - last_checkpoint).count() >=
-                            sched.checkpoint_wall_interval;
-      MPI_Bcast(&due, 1, MPI_INT, 0, comm);
-      checkpoint = checkpoint || due;
-    }
-    if (checkpoint)
+    const bool wall_due = root && std::chrono::duration<double>(now - last_checkpoint).count() >=
+                                      sched.checkpoint_wall_interval;
+    if (checkpoint_due(sched, progress, solver.time(), model.time_step, wall_due, comm))
     {
       write_checkpoint(solver, observer, progress, comm);
       last_checkpoint = clock::now();
@@ -194,22 +233,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
     if (sched.kill_after_step > 0 && solver.steps() == sched.kill_after_step)
       std::raise(SIGKILL); // tests of checkpoint and restart (RunSchedule)
   }
-  // the energy accumulators as they stand (as one rank's solver().energy() at the end), and
-  // the final state on rank 0 for the summary
-  solver.reduce();
-  if (!gathered_all)
-    solver.gather(true);
-  res.steps = solver.steps();
-  res.steps_made = solver.steps() - first_step;
-  res.time = solver.time();
-  res.energy = solver.energy();
-  res.energy_balance_error = progress.worst_error;
-  res.unbalanced_force_ratio = solver.unbalanced_force_ratio();
-  if (deflection_group >= 0)
-  {
-    res.deflection_vector = solver.group_mean_displacement(deflection_group);
-    res.deflection = res.deflection_vector.dot(dir);
-  }
+  finish_result(res, solver, progress, first_step, gathered_all, deflection_group, dir);
   if (frequency_group >= 0)
     res.natural_frequency = dem::oscillation_frequency(ft, fu);
   res.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
