@@ -22,6 +22,7 @@
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "face_group.h"
+#include "weak_plane_specimen.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -44,36 +45,11 @@ using dembridge::test::face_group;
 /// contacts elsewhere.
 CaseConfig specimen(const Vec3& box, const Vec3& normal)
 {
-  CaseConfig c;
-  c.particles.kind = ParticleSource::Kind::random;
-  c.particles.radius = radius;
-  c.particles.box_size = box;
-  c.particles.seed = 3;
-  c.particles.density = 2500;
-  c.bonds.material.model = BondModel::parallel_bond;
-  c.bonds.material.youngs_modulus = 4e9;
-  c.bonds.material.poisson_ratio = 0.3;
-  c.bonds.material.stiffness_ratio = 2.5;
-  c.bonds.contact_radius_multiplier = 1.04;
-  c.damage.law.mode = FailureMode::brittle;
-  c.damage.law.shear = ShearCriterion::mohr_coulomb;
-  c.damage.friction_angle = 30;
-  c.damage.law.tan_friction = std::tan(30 * deg);
-  c.damage.tensile_strength = 8e6;
-  c.damage.cohesion = 8e6;
+  CaseConfig c = dembridge::test::strong_rock(box, radius);
   if (normal.squaredNorm() > 0)
   {
-    WeakPlaneSet plane;
-    plane.normal = normal.normalized();
-    plane.offsets = {plane.normal.dot(0.5 * box) + 0.31 * radius};
-    c.microstructure.weak_planes = plane;
-    BondClassConfig weak = BondClassConfig::of_specimen(c.bonds.material, c.damage);
-    weak.tensile_strength = 1e6;
-    weak.cohesion = 1e6;
-    weak.material.youngs_modulus = 0.1 * c.bonds.material.youngs_modulus;
-    c.microstructure.weak_plane = weak;
-    c.microstructure.smooth_joint = true;
-    c.microstructure.joint_friction = std::tan(30 * deg);
+    const Vec3 n = normal.normalized();
+    dembridge::test::add_weak_plane(c, n, n.dot(0.5 * box) + 0.31 * radius);
   }
   c.contacts.model = ContactModel::linear;
   c.contacts.normal_stiffness = 2e7;

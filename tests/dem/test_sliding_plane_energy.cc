@@ -18,6 +18,7 @@
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "face_group.h"
+#include "weak_plane_specimen.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,35 +36,9 @@ constexpr double radius = 1.5e-3; // m
 /// @p duration.
 CaseConfig shear_box(const Vec3& box, double sigma_n, double slide, double duration)
 {
-  CaseConfig c;
-  c.particles.kind = ParticleSource::Kind::random;
-  c.particles.radius = radius;
-  c.particles.box_size = box;
-  c.particles.seed = 3;
-  c.particles.density = 2500;
-  c.bonds.material.model = BondModel::parallel_bond;
-  c.bonds.material.youngs_modulus = 4e9;
-  c.bonds.material.poisson_ratio = 0.3;
-  c.bonds.material.stiffness_ratio = 2.5;
-  c.bonds.contact_radius_multiplier = 1.04;
-  c.damage.law.mode = FailureMode::brittle;
-  c.damage.law.shear = ShearCriterion::mohr_coulomb;
-  c.damage.friction_angle = 30;
-  c.damage.law.tan_friction = std::tan(30 * deg);
-  c.damage.tensile_strength = 8e6;
-  c.damage.cohesion = 8e6;
+  CaseConfig c = dembridge::test::strong_rock(box, radius);
   const double cut = 0.5 * box.x() + 0.31 * radius; // the plane
-  WeakPlaneSet plane;
-  plane.normal = Vec3::UnitX();
-  plane.offsets = {cut};
-  c.microstructure.weak_planes = plane;
-  BondClassConfig weak = BondClassConfig::of_specimen(c.bonds.material, c.damage);
-  weak.tensile_strength = 1e6;
-  weak.cohesion = 1e6;
-  weak.material.youngs_modulus = 0.1 * c.bonds.material.youngs_modulus;
-  c.microstructure.weak_plane = weak;
-  c.microstructure.smooth_joint = true;
-  c.microstructure.joint_friction = std::tan(30 * deg);
+  dembridge::test::add_weak_plane(c, Vec3::UnitX(), cut);
   c.contacts.model = ContactModel::linear;
   c.contacts.normal_stiffness = 9.4e5; // the plane's bonds' k_n: new pairs as stiff as old
   c.contacts.restitution = 0.3;
