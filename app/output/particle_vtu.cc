@@ -147,25 +147,30 @@ void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondSt
   }
 }
 
-/// The particles' file: the first @p n particles of the store as vertices with point data.
-VtuFile particle_file(const dem::ParticleStore& p, std::size_t n, const dem::BondStore& b,
+/// The files' points: the particles' positions in the user's order.
+std::vector<dem::Vec3> user_points(const dem::ParticleStore& p, const UserOrder& at)
+{
+  std::vector<dem::Vec3> points(at.size());
+  for (std::size_t j = 0; j < at.size(); ++j)
+    points[j] = p.position[at[j]];
+  return points;
+}
+
+/// The particles' file: the particles of @p at as vertices with point data.
+VtuFile particle_file(const dem::ParticleStore& p, const UserOrder& at, const dem::BondStore& b,
                       const std::vector<std::string>& group_names)
 {
-  const UserOrder at(p, n);
-  std::vector<dem::Vec3> points(n);
-  for (std::size_t j = 0; j < n; ++j)
-    points[j] = p.position[at[j]];
-  VtuFile file(points, VtuFile::Cells::vertices);
+  VtuFile file(user_points(p, at), VtuFile::Cells::vertices);
   add_particle_data(file, p, b, at);
   file.field_strings("group_names", group_names);
   return file;
 }
 
-/// particles_NNNNNN: the snapshot's name without extension.
-std::string particle_stem(std::size_t index)
+/// KIND_NNNNNN (particles, bonds): a snapshot's name without extension.
+std::string snapshot_stem(const char* kind, std::size_t index)
 {
-  char tag[32];
-  std::snprintf(tag, sizeof tag, "particles_%06zu", index);
+  char tag[48];
+  std::snprintf(tag, sizeof tag, "%s_%06zu", kind, index);
   return tag;
 }
 } // namespace
@@ -173,33 +178,28 @@ std::string particle_stem(std::size_t index)
 void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore& b, double time,
                               long step)
 {
-  char tag[32];
-  std::snprintf(tag, sizeof tag, "%06zu", particle_files_.size());
-  const std::size_t n = p.size();
+  const std::size_t index = particle_files_.size(), n = p.size();
+  const UserOrder at(p, n);
   // Particles: vertices with point data (on several ranks the ranks' pieces and their record
   // are written by ParticlePieces)
   if (pieces_)
-    particle_files_.emplace_back(time, particle_stem(particle_files_.size()) + ".pvtu");
+    particle_files_.emplace_back(time, snapshot_stem("particles", index) + ".pvtu");
   else
   {
-    const std::string name = particle_stem(particle_files_.size()) + ".vtu";
-    particle_file(p, n, b, group_names_).write(dir_ / name, time, step);
+    const std::string name = snapshot_stem("particles", index) + ".vtu";
+    particle_file(p, at, b, group_names_).write(dir_ / name, time, step);
     particle_files_.emplace_back(time, name);
   }
   // Bonds: line cells between the particle centres, the bond's quantities as cell data
   {
-    const UserOrder at(p, n);
-    std::vector<dem::Vec3> points(n);
-    for (std::size_t j = 0; j < n; ++j)
-      points[j] = p.position[at[j]];
-    VtuFile file(points, VtuFile::Cells::lines);
+    VtuFile file(user_points(p, at), VtuFile::Cells::lines);
     add_bond_data(file, p, b);
     std::vector<std::int64_t> particle_id(n);
     for (std::size_t j = 0; j < n; ++j)
       particle_id[j] = std::int64_t(j);
     file.point_data("particle_id", particle_id);
     file.field_strings("group_names", group_names_);
-    const std::string name = std::string("bonds_") + tag + ".vtu";
+    const std::string name = snapshot_stem("bonds", index) + ".vtu";
     file.write(dir_ / name, time, step);
     bond_files_.emplace_back(time, name);
   }
@@ -221,9 +221,9 @@ void ParticlePieces::write(const dem::ParticleStore& p, std::size_t n_owned,
   // rank 0's series numbers the snapshots (a resumed run continues its checkpoint's list)
   unsigned long index = series_ ? series_->particle_files().size() : 0;
   MPI_Bcast(&index, 1, MPI_UNSIGNED_LONG, 0, comm_);
-  const std::string stem = particle_stem(index);
+  const std::string stem = snapshot_stem("particles", index);
   auto piece = [&](unsigned r) { return stem + "_r" + std::to_string(r) + ".vtu"; };
-  const VtuFile file = particle_file(p, n_owned, b, group_names_);
+  const VtuFile file = particle_file(p, UserOrder(p, n_owned), b, group_names_);
   // every rank learns whether one could not write (then all throw the first such error)
   std::string failed;
   try
