@@ -4,13 +4,13 @@ namespace dembridge::distributed
 {
 namespace
 {
-// where a record's fields start
-constexpr std::size_t at_axis = 3, at_kn = 6, at_ks = 7, at_ktor = 8, at_kben = 9, at_fraction = 10,
-                      at_radius = 11, at_ct = 12, at_cr = 13, at_model = 14, at_state = 15,
-                      plain_size = 16;
+// where a record's fields start (0, 1: the particles' global ids; 2: the bond's)
+constexpr std::size_t at_class = 3, at_length = 4, at_axis = 5, at_kn = 8, at_ks = 9, at_ktor = 10,
+                      at_kben = 11, at_fraction = 12, at_radius = 13, at_ct = 14, at_cr = 15,
+                      at_model = 16, at_state = 17, plain_size = 18;
 // with a failure law
-constexpr std::size_t at_tensile = 16, at_shear = 17, at_damage = 18, at_kappa_max = 19,
-                      at_kappa_ultimate = 20, at_dissipated = 21, at_mode = 22, failure_size = 23;
+constexpr std::size_t at_tensile = 18, at_shear = 19, at_damage = 20, at_kappa_max = 21,
+                      at_kappa_ultimate = 22, at_dissipated = 23, at_mode = 24, failure_size = 25;
 } // namespace
 
 std::size_t bond_record_size(const dem::BondStore& b)
@@ -19,9 +19,11 @@ std::size_t bond_record_size(const dem::BondStore& b)
 }
 
 void pack_bond(const dem::BondStore& b, std::size_t k, std::int64_t ga, std::int64_t gb,
-               double* out)
+               std::int64_t id, double* out)
 {
-  out[0] = double(ga), out[1] = double(gb), out[2] = b.rest_length[k];
+  out[0] = double(ga), out[1] = double(gb), out[2] = double(id);
+  out[at_class] = b.bond_class.empty() ? -1.0 : double(b.bond_class[k]); // -1: no classes
+  out[at_length] = b.rest_length[k];
   for (int d = 0; d < 3; ++d)
     out[at_axis + std::size_t(d)] = b.rest_axis[k][d];
   out[at_kn] = b.kn[k], out[at_ks] = b.ks[k], out[at_ktor] = b.ktor[k], out[at_kben] = b.kben[k];
@@ -46,11 +48,13 @@ void unpack_bond(const double* r, dem::BondStore& b, std::int32_t a, std::int32_
   dem::BondStiffness k;
   k.kn = r[at_kn], k.ks = r[at_ks], k.ktor = r[at_ktor], k.kben = r[at_kben];
   k.contact_fraction = r[at_fraction], k.radius = r[at_radius];
-  b.add(a, b_local, r[2], dem::Vec3(r[at_axis], r[at_axis + 1], r[at_axis + 2]),
+  b.add(a, b_local, r[at_length], dem::Vec3(r[at_axis], r[at_axis + 1], r[at_axis + 2]),
         dem::BondModel(int(r[at_model])), k);
   b.damping_force.back() = r[at_ct];
   b.damping_moment.back() = r[at_cr];
   b.state.back() = dem::BondState(int(r[at_state]));
+  if (r[at_class] >= 0) // (the solver reads classes only with smooth joints, refused on ranks)
+    b.bond_class.push_back(dem::BondClass(int(r[at_class])));
   if (!b.has_failure())
     return;
   b.tensile_strength.push_back(r[at_tensile]);

@@ -49,6 +49,12 @@ Vec3 vec(const dealii::Point<3>& x)
   return {x[0], x[1], x[2]};
 }
 
+/// A bond's key in the rank's store: its two local particle indices.
+std::uint64_t local_pair(std::int32_t a, std::int32_t b)
+{
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
 void pack_state(const dem::ParticleStore& p, std::size_t i, std::int64_t id,
                 std::uint32_t group_mask, const Reaction& reaction, double* out)
 {
@@ -215,6 +221,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
                           "(MPI) run yet; run it on one rank");
   bonds_.failure = model.bonds.failure;
   bonds_.drop_force_records();
+  bond_classes_ = !model.bonds.bond_class.empty();
   const std::size_t size = bond_record_size(bonds_);
   std::vector<double> records;
   for (std::size_t k = 0; k < model.bonds.size(); ++k)
@@ -223,7 +230,8 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     if (!owned[a] && !owned[b])
       continue;
     records.resize(records.size() + size);
-    pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), &records[records.size() - size]);
+    pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), std::int64_t(k),
+              &records[records.size() - size]);
   }
   std::vector<double> packed(state::count);
   build_local(records,
@@ -296,8 +304,8 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
 
   // Bonds: one copy of each record, those with an owned end, between local indices; a bonded
   // pair must have both ends here (the ghost layer is one cell deep: the cells are at least
-  // the cut-off wide), a broken one whose far end left is dropped (it carries nothing; the
-  // crack log keeps it).
+  // the cut-off wide), a broken one whose far end left carries nothing and is kept aside by
+  // the owner of its end a (detached_bonds: the bond files list it).
   std::unordered_map<std::int64_t, std::int32_t> local;
   local.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -311,6 +319,7 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
   };
   std::vector<Held> held;
   held.reserve(n_records);
+  std::vector<std::size_t> detached;
   bool too_long = false;
   std::string where;
   for (std::size_t r = 0; r < n_records; ++r)
@@ -326,6 +335,8 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
       if (record_bonded(rec) && !too_long)
         too_long = true,
         where = std::to_string(record_a(rec)) + " and " + std::to_string(record_b(rec));
+      else if (!record_bonded(rec) && a_owned)
+        detached.push_back(r);
       continue;
     }
     held.push_back({a->second, b->second, r});
@@ -349,9 +360,25 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
   bonds.failure = bonds_.failure;
   bonds.drop_force_records();
   bonds.reserve(held.size());
+  bond_ids_.clear();
   for (const Held& h : held)
+  {
     unpack_bond(&records[h.record * size], bonds, h.a, h.b);
+    bond_ids_.emplace_back(local_pair(h.a, h.b), record_id(&records[h.record * size]));
+  }
   bonds_ = std::move(bonds);
+  std::sort(bond_ids_.begin(), bond_ids_.end());
+  bond_ids_.shrink_to_fit();
+  // (two ranks may send the same record: one copy, in the order of the bonds' ids)
+  auto id_of = [&](std::size_t r) { return record_id(&records[r * size]); };
+  std::sort(detached.begin(), detached.end(),
+            [&](std::size_t x, std::size_t y) { return id_of(x) < id_of(y); });
+  detached.erase(std::unique(detached.begin(), detached.end(),
+                             [&](std::size_t x, std::size_t y) { return id_of(x) == id_of(y); }),
+                 detached.end());
+  detached_.clear();
+  for (const std::size_t r : detached)
+    detached_.insert(detached_.end(), &records[r * size], &records[r * size] + size);
 
   // The per-step exchange: 13 doubles a particle at 13 slot + c; owned slots are contiguous.
   const auto n_slots =
@@ -450,7 +477,9 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
   std::vector<double> records(size * bonds_.size());
   for (std::size_t k = 0; k < bonds_.size(); ++k)
     pack_bond(bonds_, k, global_id_[std::size_t(bonds_.a[k])], global_id_[std::size_t(bonds_.b[k])],
-              &records[k * size]);
+              bond_id(k), &records[k * size]);
+  records.insert(records.end(), detached_.begin(), detached_.end()); // they go with end a
+  const std::size_t n_held = records.size() / size;
   const std::vector<std::int64_t> was_owned(global_id_.begin(),
                                             global_id_.begin() + long(n_owned_));
   auto index_in = [](const std::vector<std::int64_t>& sorted, std::int64_t id) -> long
@@ -514,7 +543,7 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
         out.insert(out.end(), rec, rec + size);
       }
   };
-  for (std::size_t k = 0; k < bonds_.size(); ++k)
+  for (std::size_t k = 0; k < n_held; ++k)
   {
     const double* rec = &records[k * size];
     route(rec, size, record_a(rec), record_b(rec), 1);
@@ -566,6 +595,15 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
               });
 }
 
+std::int64_t DistributedParticles::bond_id(std::size_t k) const
+{
+  const std::uint64_t key = local_pair(bonds_.a[k], bonds_.b[k]);
+  const auto at =
+      std::lower_bound(bond_ids_.begin(), bond_ids_.end(), key,
+                       [](const auto& entry, std::uint64_t x) { return entry.first < x; });
+  return at->second; // (every bond held has its id: build_local)
+}
+
 std::size_t DistributedParticles::halo_doubles() const
 {
   return partitioner_->n_import_indices();
@@ -586,8 +624,9 @@ std::size_t DistributedParticles::handler_bytes() const
 std::size_t DistributedParticles::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(global_id_) + bytes(reactions_) +
-         bytes(rebuilt_at_) + bytes(ghost_buffer_) + bytes(send_buffer_) + bytes(requests_) +
-         partitioner_->memory_consumption() + mesh_bytes() + handler_bytes();
+  return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(bond_ids_) + bytes(detached_) +
+         bytes(global_id_) + bytes(reactions_) + bytes(rebuilt_at_) + bytes(ghost_buffer_) +
+         bytes(send_buffer_) + bytes(requests_) + partitioner_->memory_consumption() +
+         mesh_bytes() + handler_bytes();
 }
 } // namespace dembridge::distributed
