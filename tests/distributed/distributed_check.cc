@@ -251,9 +251,8 @@ dem::Model shattering_cluster()
   for (std::size_t i = 0; i < m.particles.size(); ++i)
   {
     const Vec3 d = m.particles.position[i] - centre;
-    m.particles.velocity[i] =
-        Vec3(d.x() > 0 ? 3 : -3, d.y() > 0 ? 3 : -3, d.z() > 0 ? 3 : -3) +
-        0.1 * Vec3(n01(rng), n01(rng), n01(rng));
+    m.particles.velocity[i] = Vec3(d.x() > 0 ? 3 : -3, d.y() > 0 ? 3 : -3, d.z() > 0 ? 3 : -3) +
+                              0.1 * Vec3(n01(rng), n01(rng), n01(rng));
     m.particles.angular_velocity[i] = 10 * Vec3(n01(rng), n01(rng), n01(rng));
   }
   return m;
