@@ -1,4 +1,5 @@
 #include "distributed/bond_records.h"
+#include <algorithm>
 
 namespace dembridge::distributed
 {
@@ -64,5 +65,69 @@ void unpack_bond(const double* r, dem::BondStore& b, std::int32_t a, std::int32_
   b.kappa_ultimate.push_back(r[at_kappa_ultimate]);
   b.dissipated.push_back(r[at_dissipated]);
   b.failure_mode.push_back(dem::CrackMode(int(r[at_mode])));
+}
+
+HeldBonds hold_bonds(const std::vector<double>& records, const dem::FailureLaw& failure,
+                     const std::unordered_map<std::int64_t, std::int32_t>& local,
+                     std::size_t n_owned)
+{
+  HeldBonds out;
+  out.bonds.failure = failure;
+  out.bonds.drop_force_records();
+  const std::size_t size = bond_record_size(out.bonds);
+  const std::size_t n_records = records.size() / size;
+  struct Held
+  {
+    std::int32_t a, b;
+    std::size_t record;
+  };
+  std::vector<Held> held;
+  held.reserve(n_records);
+  std::vector<std::size_t> detached;
+  for (std::size_t r = 0; r < n_records; ++r)
+  {
+    const double* rec = &records[r * size];
+    const auto a = local.find(record_a(rec)), b = local.find(record_b(rec));
+    const bool a_owned = a != local.end() && std::size_t(a->second) < n_owned;
+    const bool b_owned = b != local.end() && std::size_t(b->second) < n_owned;
+    if (!a_owned && !b_owned)
+      continue;
+    if (a == local.end() || b == local.end())
+    {
+      if (record_bonded(rec) && out.too_long.empty())
+        out.too_long = std::to_string(record_a(rec)) + " and " + std::to_string(record_b(rec));
+      else if (!record_bonded(rec) && a_owned)
+        detached.push_back(r);
+      continue;
+    }
+    held.push_back({a->second, b->second, r});
+  }
+  std::stable_sort(held.begin(), held.end(),
+                   [](const Held& x, const Held& y)
+                   {
+                     return std::pair(std::min(x.a, x.b), std::max(x.a, x.b)) <
+                            std::pair(std::min(y.a, y.b), std::max(y.a, y.b));
+                   });
+  held.erase(std::unique(held.begin(), held.end(),
+                         [](const Held& x, const Held& y) { return x.a == y.a && x.b == y.b; }),
+             held.end());
+  out.bonds.reserve(held.size());
+  out.ids.reserve(held.size());
+  for (const Held& h : held)
+  {
+    unpack_bond(&records[h.record * size], out.bonds, h.a, h.b);
+    out.ids.emplace_back(local_pair(h.a, h.b), record_id(&records[h.record * size]));
+  }
+  std::sort(out.ids.begin(), out.ids.end());
+  // (two ranks may send the same record: one copy)
+  auto id_of = [&](std::size_t r) { return record_id(&records[r * size]); };
+  std::sort(detached.begin(), detached.end(),
+            [&](std::size_t x, std::size_t y) { return id_of(x) < id_of(y); });
+  detached.erase(std::unique(detached.begin(), detached.end(),
+                             [&](std::size_t x, std::size_t y) { return id_of(x) == id_of(y); }),
+                 detached.end());
+  for (const std::size_t r : detached)
+    out.detached.insert(out.detached.end(), &records[r * size], &records[r * size] + size);
+  return out;
 }
 } // namespace dembridge::distributed

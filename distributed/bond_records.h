@@ -11,6 +11,10 @@
 #include "dem/bonds/bond_store.h"
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace dembridge::distributed
 {
@@ -41,4 +45,30 @@ bool record_bonded(const double* record);
 /// Appends a packed bond to @p b between its local particles @p a and @p b_local (its class
 /// too where the model's bonds have classes).
 void unpack_bond(const double* record, dem::BondStore& b, std::int32_t a, std::int32_t b_local);
+
+/// A bond's key in a rank's store: its two local particle indices.
+inline std::uint64_t local_pair(std::int32_t a, std::int32_t b)
+{
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+/// The bonds a rank holds, from the records it has at a rebuild (its own and those sent to it).
+struct HeldBonds
+{
+  /// One copy of each record with an owned end and both ends here, between local indices, in
+  /// the bond loop's order (by lower particle: runs of bonds share it, then upper).
+  dem::BondStore bonds;
+  /// (local_pair, the bond's id) of each, sorted.
+  std::vector<std::pair<std::uint64_t, std::int64_t>> ids;
+  /// The records of the broken bonds whose end a is owned and end b is not here, one copy each
+  /// in the order of their ids.
+  std::vector<double> detached;
+  /// A bonded pair with an owned end and the other end not here ("ga and gb"), else empty.
+  std::string too_long;
+};
+/// @p local: the local index of each global particle id here; @p n_owned: the owned ones are
+/// [0, n_owned); @p failure: the store's failure law.
+HeldBonds hold_bonds(const std::vector<double>& records, const dem::FailureLaw& failure,
+                     const std::unordered_map<std::int64_t, std::int32_t>& local,
+                     std::size_t n_owned);
 } // namespace dembridge::distributed

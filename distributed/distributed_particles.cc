@@ -49,12 +49,6 @@ Vec3 vec(const dealii::Point<3>& x)
   return {x[0], x[1], x[2]};
 }
 
-/// A bond's key in the rank's store: its two local particle indices.
-std::uint64_t local_pair(std::int32_t a, std::int32_t b)
-{
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-
 void pack_state(const dem::ParticleStore& p, std::size_t i, std::int64_t id,
                 std::uint32_t group_mask, const Reaction& reaction, double* out)
 {
@@ -310,75 +304,15 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
   local.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     local.emplace(global_id_[i], std::int32_t(i));
-  const std::size_t size = bond_record_size(bonds_);
-  const std::size_t n_records = records.size() / size;
-  struct Held
-  {
-    std::int32_t a, b;
-    std::size_t record;
-  };
-  std::vector<Held> held;
-  held.reserve(n_records);
-  std::vector<std::size_t> detached;
-  bool too_long = false;
-  std::string where;
-  for (std::size_t r = 0; r < n_records; ++r)
-  {
-    const double* rec = &records[r * size];
-    const auto a = local.find(record_a(rec)), b = local.find(record_b(rec));
-    const bool a_owned = a != local.end() && std::size_t(a->second) < n_owned_;
-    const bool b_owned = b != local.end() && std::size_t(b->second) < n_owned_;
-    if (!a_owned && !b_owned)
-      continue;
-    if (a == local.end() || b == local.end())
-    {
-      if (record_bonded(rec) && !too_long)
-        too_long = true,
-        where = std::to_string(record_a(rec)) + " and " + std::to_string(record_b(rec));
-      else if (!record_bonded(rec) && a_owned)
-        detached.push_back(r);
-      continue;
-    }
-    held.push_back({a->second, b->second, r});
-  }
-  throw_if_any(too_long,
-               "a bond (between particles " + where +
+  HeldBonds held = hold_bonds(records, bonds_.failure, local, n_owned_);
+  throw_if_any(!held.too_long.empty(),
+               "a bond (between particles " + held.too_long +
                    " on some rank) grew longer than a background cell: its ends are no longer "
                    "in touching cells",
                comm_);
-  // the bond loop's order: by lower particle (runs of bonds share it), then upper
-  std::stable_sort(held.begin(), held.end(),
-                   [](const Held& x, const Held& y)
-                   {
-                     return std::pair(std::min(x.a, x.b), std::max(x.a, x.b)) <
-                            std::pair(std::min(y.a, y.b), std::max(y.a, y.b));
-                   });
-  held.erase(std::unique(held.begin(), held.end(),
-                         [](const Held& x, const Held& y) { return x.a == y.a && x.b == y.b; }),
-             held.end());
-  dem::BondStore bonds;
-  bonds.failure = bonds_.failure;
-  bonds.drop_force_records();
-  bonds.reserve(held.size());
-  bond_ids_.clear();
-  for (const Held& h : held)
-  {
-    unpack_bond(&records[h.record * size], bonds, h.a, h.b);
-    bond_ids_.emplace_back(local_pair(h.a, h.b), record_id(&records[h.record * size]));
-  }
-  bonds_ = std::move(bonds);
-  std::sort(bond_ids_.begin(), bond_ids_.end());
-  bond_ids_.shrink_to_fit();
-  // (two ranks may send the same record: one copy, in the order of the bonds' ids)
-  auto id_of = [&](std::size_t r) { return record_id(&records[r * size]); };
-  std::sort(detached.begin(), detached.end(),
-            [&](std::size_t x, std::size_t y) { return id_of(x) < id_of(y); });
-  detached.erase(std::unique(detached.begin(), detached.end(),
-                             [&](std::size_t x, std::size_t y) { return id_of(x) == id_of(y); }),
-                 detached.end());
-  detached_.clear();
-  for (const std::size_t r : detached)
-    detached_.insert(detached_.end(), &records[r * size], &records[r * size] + size);
+  bonds_ = std::move(held.bonds);
+  bond_ids_ = std::move(held.ids);
+  detached_ = std::move(held.detached);
 
   // The per-step exchange: 13 doubles a particle at 13 slot + c; owned slots are contiguous.
   const auto n_slots =
