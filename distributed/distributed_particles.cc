@@ -215,6 +215,7 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
                           "(MPI) run yet; run it on one rank");
   bonds_.failure = model.bonds.failure;
   bonds_.drop_force_records();
+  bond_classes_ = !model.bonds.bond_class.empty();
   const std::size_t size = bond_record_size(bonds_);
   std::vector<double> records;
   for (std::size_t k = 0; k < model.bonds.size(); ++k)
@@ -223,7 +224,8 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
     if (!owned[a] && !owned[b])
       continue;
     records.resize(records.size() + size);
-    pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), &records[records.size() - size]);
+    pack_bond(model.bonds, k, std::int64_t(a), std::int64_t(b), std::int64_t(k),
+              &records[records.size() - size]);
   }
   std::vector<double> packed(state::count);
   build_local(records,
@@ -296,62 +298,21 @@ void DistributedParticles::build_local(std::vector<double>& records, const FillO
 
   // Bonds: one copy of each record, those with an owned end, between local indices; a bonded
   // pair must have both ends here (the ghost layer is one cell deep: the cells are at least
-  // the cut-off wide), a broken one whose far end left is dropped (it carries nothing; the
-  // crack log keeps it).
+  // the cut-off wide), a broken one whose far end left carries nothing and is kept aside by
+  // the owner of its end a (detached_bonds: the bond files list it).
   std::unordered_map<std::int64_t, std::int32_t> local;
   local.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     local.emplace(global_id_[i], std::int32_t(i));
-  const std::size_t size = bond_record_size(bonds_);
-  const std::size_t n_records = records.size() / size;
-  struct Held
-  {
-    std::int32_t a, b;
-    std::size_t record;
-  };
-  std::vector<Held> held;
-  held.reserve(n_records);
-  bool too_long = false;
-  std::string where;
-  for (std::size_t r = 0; r < n_records; ++r)
-  {
-    const double* rec = &records[r * size];
-    const auto a = local.find(record_a(rec)), b = local.find(record_b(rec));
-    const bool a_owned = a != local.end() && std::size_t(a->second) < n_owned_;
-    const bool b_owned = b != local.end() && std::size_t(b->second) < n_owned_;
-    if (!a_owned && !b_owned)
-      continue;
-    if (a == local.end() || b == local.end())
-    {
-      if (record_bonded(rec) && !too_long)
-        too_long = true,
-        where = std::to_string(record_a(rec)) + " and " + std::to_string(record_b(rec));
-      continue;
-    }
-    held.push_back({a->second, b->second, r});
-  }
-  throw_if_any(too_long,
-               "a bond (between particles " + where +
+  HeldBonds held = hold_bonds(records, bonds_.failure, local, n_owned_);
+  throw_if_any(!held.too_long.empty(),
+               "a bond (between particles " + held.too_long +
                    " on some rank) grew longer than a background cell: its ends are no longer "
                    "in touching cells",
                comm_);
-  // the bond loop's order: by lower particle (runs of bonds share it), then upper
-  std::stable_sort(held.begin(), held.end(),
-                   [](const Held& x, const Held& y)
-                   {
-                     return std::pair(std::min(x.a, x.b), std::max(x.a, x.b)) <
-                            std::pair(std::min(y.a, y.b), std::max(y.a, y.b));
-                   });
-  held.erase(std::unique(held.begin(), held.end(),
-                         [](const Held& x, const Held& y) { return x.a == y.a && x.b == y.b; }),
-             held.end());
-  dem::BondStore bonds;
-  bonds.failure = bonds_.failure;
-  bonds.drop_force_records();
-  bonds.reserve(held.size());
-  for (const Held& h : held)
-    unpack_bond(&records[h.record * size], bonds, h.a, h.b);
-  bonds_ = std::move(bonds);
+  bonds_ = std::move(held.bonds);
+  bond_ids_ = std::move(held.ids);
+  detached_ = std::move(held.detached);
 
   // The per-step exchange: 13 doubles a particle at 13 slot + c; owned slots are contiguous.
   const auto n_slots =
@@ -450,7 +411,9 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
   std::vector<double> records(size * bonds_.size());
   for (std::size_t k = 0; k < bonds_.size(); ++k)
     pack_bond(bonds_, k, global_id_[std::size_t(bonds_.a[k])], global_id_[std::size_t(bonds_.b[k])],
-              &records[k * size]);
+              bond_id(k), &records[k * size]);
+  records.insert(records.end(), detached_.begin(), detached_.end()); // they go with end a
+  const std::size_t n_held = records.size() / size;
   const std::vector<std::int64_t> was_owned(global_id_.begin(),
                                             global_id_.begin() + long(n_owned_));
   auto index_in = [](const std::vector<std::int64_t>& sorted, std::int64_t id) -> long
@@ -514,7 +477,7 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
         out.insert(out.end(), rec, rec + size);
       }
   };
-  for (std::size_t k = 0; k < bonds_.size(); ++k)
+  for (std::size_t k = 0; k < n_held; ++k)
   {
     const double* rec = &records[k * size];
     route(rec, size, record_a(rec), record_b(rec), 1);
@@ -566,6 +529,15 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
               });
 }
 
+std::int64_t DistributedParticles::bond_id(std::size_t k) const
+{
+  const std::uint64_t key = local_pair(bonds_.a[k], bonds_.b[k]);
+  const auto at =
+      std::lower_bound(bond_ids_.begin(), bond_ids_.end(), key,
+                       [](const auto& entry, std::uint64_t x) { return entry.first < x; });
+  return at->second; // (every bond held has its id: build_local)
+}
+
 std::size_t DistributedParticles::halo_doubles() const
 {
   return partitioner_->n_import_indices();
@@ -586,8 +558,9 @@ std::size_t DistributedParticles::handler_bytes() const
 std::size_t DistributedParticles::memory_bytes() const
 {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(global_id_) + bytes(reactions_) +
-         bytes(rebuilt_at_) + bytes(ghost_buffer_) + bytes(send_buffer_) + bytes(requests_) +
-         partitioner_->memory_consumption() + mesh_bytes() + handler_bytes();
+  return particles_.memory_bytes() + bonds_.memory_bytes() + bytes(bond_ids_) + bytes(detached_) +
+         bytes(global_id_) + bytes(reactions_) + bytes(rebuilt_at_) + bytes(ghost_buffer_) +
+         bytes(send_buffer_) + bytes(requests_) + partitioner_->memory_consumption() +
+         mesh_bytes() + handler_bytes();
 }
 } // namespace dembridge::distributed

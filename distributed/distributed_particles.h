@@ -60,6 +60,15 @@ public:
   std::size_t n_owned() const { return n_owned_; }
   /// Global id (index in the model) of each local particle.
   const std::vector<std::int64_t>& global_ids() const { return global_id_; }
+  /// The model's index of bond k of bonds() at the setup (its global id: it travels in the
+  /// bond's record through migrations; the ParaView bond files show it).
+  std::int64_t bond_id(std::size_t k) const;
+  /// Whether the model's bonds have classes (bonds() holds them then).
+  bool bond_classes() const { return bond_classes_; }
+  /// The records (bond_records.h) of the broken bonds of owned particles whose end b drifted
+  /// out of this rank's store, in the order of their ids: kept by the owner of end a (they
+  /// travel with it) so that the bond files list every bond; a bond is in bonds() or here.
+  const std::vector<double>& detached_bonds() const { return detached_; }
   /// The support reactions of the owned particles as the last rebuild brought them.
   const Reactions& reactions() const { return reactions_; }
 
@@ -118,6 +127,10 @@ private:
   dem::BondStore bonds_;
   std::size_t n_owned_ = 0;
   std::vector<std::int64_t> global_id_;
+  /// (local a, local b) -> the bond's id, sorted: the solver may reorder bonds_ (threads)
+  std::vector<std::pair<std::uint64_t, std::int64_t>> bond_ids_;
+  std::vector<double> detached_;
+  bool bond_classes_ = false;
   Reactions reactions_;
   std::int64_t n_global_ = 0;
   std::int64_t first_slot_ = 0;       ///< slot of the first owned particle

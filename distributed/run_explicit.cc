@@ -62,9 +62,10 @@ void track_energy(dem::RunProgress& progress, const dem::EnergyBalance& e)
     progress.worst_error = std::max(progress.worst_error, e.error() / progress.largest_seen);
 }
 
-/// A record step (collective): the energy tracked, rank 0's report solver filled (every
-/// particle and bond at a snapshot: the bond files and the crack output read them), the ranks'
-/// snapshot pieces written, rank 0's observer called. Returns whether everything was gathered.
+/// A record step (collective): the energy tracked, rank 0's report solver filled (the figures,
+/// the groups' particles and the crack log; every particle and bond at a snapshot that is not
+/// written in pieces: the files read them), the ranks' snapshot pieces written, rank 0's
+/// observer called. Returns whether everything was gathered.
 bool record_step(DistributedSolver& solver, dem::RunObserver* observer,
                  const SnapshotPieces& pieces, const dem::RunSchedule& sched,
                  dem::RunProgress& progress, long n, bool stop, bool root)
@@ -73,19 +74,21 @@ bool record_step(DistributedSolver& solver, dem::RunObserver* observer,
   const bool report = n % sched.record_interval == 0 || n == 1 || stop;
   const bool snapshot =
       n == 1 || stop || (sched.snapshot_interval > 0 && n % sched.snapshot_interval == 0);
+  const bool gather_all = snapshot && !pieces;
   if (report || snapshot)
-    solver.gather(snapshot);
+    solver.gather(gather_all);
   if (snapshot && pieces)
   {
     solver.share_ghost_references();
-    pieces(solver.particles().particles(), solver.particles().n_owned(), solver.particles().bonds(),
-           solver.time(), solver.steps());
+    const DistributedParticles& own = solver.particles();
+    pieces(own.particles(), own.n_owned(), own.bonds(), bond_piece(own), solver.time(),
+           solver.steps());
   }
   if (root && observer && report)
     observer->on_record(*solver.report());
   if (root && observer && snapshot)
     observer->on_snapshot(*solver.report());
-  return snapshot;
+  return gather_all;
 }
 
 /// Whether a checkpoint is due after the step that reached @p time (as on one rank,

@@ -3,10 +3,11 @@
 // measurements, the model's time stepping spread over the ranks (distributed_solver.h). Every
 // rank calls it with the same model and case; the observer is rank 0's only and reads rank 0's
 // report solver over the whole model, which holds what a one-rank run's solver would (the
-// figures summed over the ranks at each record, the particles of the groups gathered at each
-// record and every particle and bond state at snapshots and at the end), so that the history,
-// ParaView files and summary a one-rank observer writes come out the same (with SnapshotPieces
-// the particles' snapshots are written by every rank, its own particles).
+// figures summed over the ranks and the crack log at each record, the particles of the groups
+// gathered at each record, every particle and bond state at the end, and at snapshots too
+// unless the ranks write them in pieces: SnapshotPieces, each rank its own particles and the
+// bonds it books), so that the history, ParaView files and summary a one-rank observer writes
+// come out the same.
 // Checkpoints as on one rank (RunSchedule), written collectively: every rank gathers the run's
 // state into rank 0's report solver at the same step (run_checkpoint.h), rank 0's observer
 // writes it, and every rank learns whether the write failed (and then throws its error). A
@@ -14,6 +15,7 @@
 // Not yet on several ranks (unsupported_on_ranks): the contact monitor, more than 32 groups, a
 // checkpoint of a pressure load; the static solver (the caller refuses it).
 #include "dem/solvers/run_explicit.h"
+#include "distributed/bond_piece.h"
 #include <deal.II/base/mpi.h>
 #include <functional>
 
@@ -28,14 +30,16 @@ struct Resume
   std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
 };
 
-/// Writes a snapshot's particles in pieces, on every rank (collective): the first @p n_owned
-/// particles of the rank's store (owned ones; ghosts after them), with the rank's bonds.
-using SnapshotPieces = std::function<void(const dem::ParticleStore& p, std::size_t n_owned,
-                                          const dem::BondStore& b, double time, long step)>;
+/// Writes a snapshot in pieces, on every rank (collective): the first @p n_owned particles of
+/// the rank's store (owned ones; ghosts after them, @p b the rank's bonds, for their stress),
+/// and the bonds the rank books (@p bonds).
+using SnapshotPieces =
+    std::function<void(const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b,
+                       const BondPiece& bonds, double time, long step)>;
 
 /// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used.
 /// @p pieces (every rank passes one, or none): at each snapshot, before rank 0's observer
-/// writes the rest of it. On
+/// writes the rest of it (then the whole state is not gathered at snapshots). On
 /// return rank 0's model holds the final state; the other ranks' model has given up its
 /// particles and bonds (each rank kept only its part after the setup).
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,

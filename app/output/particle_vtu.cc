@@ -90,10 +90,22 @@ void add_particle_data(VtuFile& file, const dem::ParticleStore& p, const dem::Bo
   file.point_data("stress", sigma, 9);
 }
 
+/// How a bond file numbers its points and bonds: the whole model's (point j the particle with
+/// id j, a bond's id its index) or a piece's (its store holds the bonds' ends in id order).
+struct BondNumbering
+{
+  bool points_by_index = false;                   ///< else by the particles' ids
+  const std::vector<std::int64_t>* ids = nullptr; ///< the bonds' ids; null: their index
+  bool classes = false;                           ///< the class array
+};
+
 /// The bonds' cell data: the particle pairs, the forces and moments the bonds carry, their
 /// section stresses, states, damage, ids and classes.
-void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondStore& b)
+void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondStore& b,
+                   const BondNumbering& numbering)
 {
+  auto point = [&](std::int32_t i) -> std::int64_t
+  { return numbering.points_by_index ? i : p.id[std::size_t(i)]; };
   const std::size_t nb = b.size();
   std::vector<std::int64_t> pairs(2 * nb), id(nb);
   std::vector<double> normal(nb), shear(nb), twist(nb), bending(nb), force(3 * nb);
@@ -101,7 +113,8 @@ void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondSt
   std::vector<std::uint8_t> state(nb);
   for (std::size_t k = 0; k < nb; ++k)
   {
-    pairs[2 * k] = p.id[b.a[k]], pairs[2 * k + 1] = p.id[b.b[k]], id[k] = std::int64_t(k);
+    pairs[2 * k] = point(b.a[k]), pairs[2 * k + 1] = point(b.b[k]);
+    id[k] = numbering.ids ? (*numbering.ids)[k] : std::int64_t(k);
     const dem::Vec3 xa = p.position[b.a[k]], xb = p.position[b.b[k]];
     dem::Vec3 e = (xb - xa).normalized();
     if (const dem::Vec3* N = b.joint_normal(k)) // a smooth joint's split (smooth_joint.h)
@@ -136,7 +149,7 @@ void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondSt
   file.cell_data("shear_stress", shear_stress);
   file.cell_data("damage", damage);
   file.cell_data("id", id);
-  if (!b.bond_class.empty()) // the class that chose each bond's constants (bond_class.h)
+  if (numbering.classes) // the class that chose each bond's constants (bond_class.h)
   {
     std::vector<std::uint8_t> bond_class(nb);
     for (std::size_t k = 0; k < nb; ++k)
@@ -166,6 +179,20 @@ VtuFile particle_file(const dem::ParticleStore& p, const UserOrder& at, const de
   return file;
 }
 
+/// The bonds' file: line cells between @p points (their particle_id @p particle_id) with the
+/// bonds' cell data.
+VtuFile bond_file(const std::vector<dem::Vec3>& points,
+                  const std::vector<std::int64_t>& particle_id, const dem::ParticleStore& p,
+                  const dem::BondStore& b, const BondNumbering& numbering,
+                  const std::vector<std::string>& group_names)
+{
+  VtuFile file(points, VtuFile::Cells::lines);
+  add_bond_data(file, p, b, numbering);
+  file.point_data("particle_id", particle_id);
+  file.field_strings("group_names", group_names);
+  return file;
+}
+
 /// KIND_NNNNNN (particles, bonds): a snapshot's name without extension.
 std::string snapshot_stem(const char* kind, std::size_t index)
 {
@@ -179,30 +206,26 @@ void ParticleVtuSeries::write(const dem::ParticleStore& p, const dem::BondStore&
                               long step)
 {
   const std::size_t index = particle_files_.size(), n = p.size();
-  const UserOrder at(p, n);
-  // Particles: vertices with point data (on several ranks the ranks' pieces and their record
-  // are written by ParticlePieces)
-  if (pieces_)
+  if (pieces_) // on several ranks: the ranks' pieces and their records (ParticlePieces)
+  {
     particle_files_.emplace_back(time, snapshot_stem("particles", index) + ".pvtu");
-  else
-  {
-    const std::string name = snapshot_stem("particles", index) + ".vtu";
-    particle_file(p, at, b, group_names_).write(dir_ / name, time, step);
-    particle_files_.emplace_back(time, name);
+    bond_files_.emplace_back(time, snapshot_stem("bonds", index) + ".pvtu");
+    return;
   }
+  const UserOrder at(p, n);
+  // Particles: vertices with point data
+  const std::string particles = snapshot_stem("particles", index) + ".vtu";
+  particle_file(p, at, b, group_names_).write(dir_ / particles, time, step);
+  particle_files_.emplace_back(time, particles);
   // Bonds: line cells between the particle centres, the bond's quantities as cell data
-  {
-    VtuFile file(user_points(p, at), VtuFile::Cells::lines);
-    add_bond_data(file, p, b);
-    std::vector<std::int64_t> particle_id(n);
-    for (std::size_t j = 0; j < n; ++j)
-      particle_id[j] = std::int64_t(j);
-    file.point_data("particle_id", particle_id);
-    file.field_strings("group_names", group_names_);
-    const std::string name = snapshot_stem("bonds", index) + ".vtu";
-    file.write(dir_ / name, time, step);
-    bond_files_.emplace_back(time, name);
-  }
+  std::vector<std::int64_t> particle_id(n);
+  for (std::size_t j = 0; j < n; ++j)
+    particle_id[j] = std::int64_t(j);
+  const std::string bonds = snapshot_stem("bonds", index) + ".vtu";
+  bond_file(user_points(p, at), particle_id, p, b, {false, nullptr, !b.bond_class.empty()},
+            group_names_)
+      .write(dir_ / bonds, time, step);
+  bond_files_.emplace_back(time, bonds);
 }
 
 ParticlePieces::ParticlePieces(std::filesystem::path dir, std::vector<std::string> group_names,
@@ -210,20 +233,34 @@ ParticlePieces::ParticlePieces(std::filesystem::path dir, std::vector<std::strin
     : dir_(std::move(dir)), group_names_(std::move(group_names)), comm_(comm), series_(series)
 {
   if (series_)
-    series_->particles_in_pieces();
+    series_->in_pieces();
 }
 
 void ParticlePieces::write(const dem::ParticleStore& p, std::size_t n_owned,
                            const dem::BondStore& b, double time, long step)
+{
+  write_piece(particle_file(p, UserOrder(p, n_owned), b, group_names_), "particles", time, step);
+}
+
+void ParticlePieces::write_bonds(const dem::ParticleStore& ends, const dem::BondStore& bonds,
+                                 const std::vector<std::int64_t>& ids, bool classes, double time,
+                                 long step)
+{
+  const std::vector<std::int64_t> particle_id(ends.id.begin(), ends.id.end());
+  write_piece(
+      bond_file(ends.position, particle_id, ends, bonds, {true, &ids, classes}, group_names_),
+      "bonds", time, step);
+}
+
+void ParticlePieces::write_piece(const VtuFile& file, const char* kind, double time, long step)
 {
   const unsigned rank = dealii::Utilities::MPI::this_mpi_process(comm_);
   const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm_);
   // rank 0's series numbers the snapshots (a resumed run continues its checkpoint's list)
   unsigned long index = series_ ? series_->particle_files().size() : 0;
   MPI_Bcast(&index, 1, MPI_UNSIGNED_LONG, 0, comm_);
-  const std::string stem = snapshot_stem("particles", index);
+  const std::string stem = snapshot_stem(kind, index);
   auto piece = [&](unsigned r) { return stem + "_r" + std::to_string(r) + ".vtu"; };
-  const VtuFile file = particle_file(p, UserOrder(p, n_owned), b, group_names_);
   // every rank learns whether one could not write (then all throw the first such error)
   std::string failed;
   try
@@ -272,11 +309,13 @@ void remove_later_dem_snapshots(const std::filesystem::path& dir, const Particle
   for (const auto& entry : std::filesystem::directory_iterator(dir))
   {
     std::string name = entry.path().filename().string();
-    // a piece of a run on several ranks (particles_NNNNNN_rR.vtu) goes with its record
+    const bool particles_or_bonds =
+        name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0;
+    // a piece of a run on several ranks (particles_NNNNNN_rR.vtu, bonds_...) goes with its record
     if (const auto r = name.rfind("_r");
-        name.rfind("particles_", 0) == 0 && r != name.npos && entry.path().extension() == ".vtu")
+        particles_or_bonds && r != name.npos && entry.path().extension() == ".vtu")
       name = name.substr(0, r) + ".pvtu";
-    const bool record = entry.path().extension() == ".pvtu" && name.rfind("particles_", 0) == 0;
+    const bool record = entry.path().extension() == ".pvtu" && particles_or_bonds;
     const bool snapshot =
         record || (entry.path().extension() == ".vtu" &&
                    (name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0 ||

@@ -14,9 +14,12 @@
 //    field data class_names);
 //  - both: field data TIME, CYCLE (the step) and group_names (string array).
 // The .pvd time series are written by finish() (particle_vtu_file.h: write_pvd, no date).
-// A DEM run on several MPI ranks writes the particles in pieces (ParticlePieces): each rank its
-// own particles as particles_NNNNNN_rR.vtu (the same point data, ids included, in id order), rank
-// 0 the record particles_NNNNNN.pvtu over them, which particles.pvd lists.
+// A DEM run on several MPI ranks writes both in pieces (ParticlePieces): each rank its own
+// particles as particles_NNNNNN_rR.vtu (the same point data, ids included, in id order) and the
+// bonds it books as bonds_NNNNNN_rR.vtu (the same cell data, in the order of the bond ids, the
+// model's index; its points the bonds' ends, with their particle_id), rank 0 the records
+// particles_NNNNNN.pvtu and bonds_NNNNNN.pvtu over them, which particles.pvd and bonds.pvd
+// list.
 #include "dem/bonds/bond_store.h"
 #include "dem/core/particle_store.h"
 #include "dem/core/state_archive.h"
@@ -28,6 +31,7 @@
 
 namespace dembridge::app
 {
+class VtuFile; // particle_vtu_file.h
 class ParticleVtuSeries
 {
 public:
@@ -36,9 +40,9 @@ public:
   {
   }
   void write(const dem::ParticleStore& p, const dem::BondStore& b, double time, long step);
-  /// From now on write() lists the particles' snapshot as the .pvtu record that ParticlePieces
-  /// writes (just before) and writes the bonds only.
-  void particles_in_pieces() { pieces_ = true; }
+  /// From now on write() lists the snapshot's particles and bonds as the .pvtu records that
+  /// ParticlePieces writes (just before) and writes nothing.
+  void in_pieces() { pieces_ = true; }
   /// Writes particles.pvd and bonds.pvd listing every snapshot.
   void finish() const;
   /// (time, file name relative to DIR) of every snapshot so far: particles and bonds.
@@ -57,9 +61,10 @@ private:
   bool pieces_ = false;
 };
 
-/// The particle snapshots of a run on several MPI ranks: every rank writes its own particles as
-/// a piece particles_NNNNNN_rR.vtu of the snapshot that rank 0's series lists next, rank 0 also
-/// the record particles_NNNNNN.pvtu (rank 0's series then lists it: write()).
+/// The snapshots of a run on several MPI ranks: every rank writes its own particles as a piece
+/// particles_NNNNNN_rR.vtu of the snapshot that rank 0's series lists next, and its bonds as
+/// bonds_NNNNNN_rR.vtu; rank 0 also the records particles_NNNNNN.pvtu and bonds_NNNNNN.pvtu
+/// (rank 0's series then lists them: write()).
 class ParticlePieces
 {
 public:
@@ -70,8 +75,19 @@ public:
   /// bonds of those particles, for their stress); a failed write throws on every rank.
   void write(const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b, double time,
              long step);
+  /// Collective: the piece of the bonds the rank books, @p bonds between the points @p ends (in
+  /// the order of their ids: ends.position and ends.id are the points and their particle_id;
+  /// the bonds' forces read the ends' orientations and velocities too), @p ids the bonds' ids
+  /// (the model's index); @p classes: the model's bonds have classes (a piece without bonds
+  /// names the array all the same). A failed write throws on every rank.
+  void write_bonds(const dem::ParticleStore& ends, const dem::BondStore& bonds,
+                   const std::vector<std::int64_t>& ids, bool classes, double time, long step);
 
 private:
+  /// Collective: @p file as this rank's piece of snapshot KIND_NNNNNN (the next one of rank 0's
+  /// series), rank 0 also its record.
+  void write_piece(const VtuFile& file, const char* kind, double time, long step);
+
   std::filesystem::path dir_;
   std::vector<std::string> group_names_;
   MPI_Comm comm_;
@@ -79,7 +95,7 @@ private:
 };
 
 /// Removes the particle, bond and crack snapshots (particles_, bonds_, cracks_*.vtu, the
-/// particles' .pvtu records and their pieces) in @p dir
+/// particles' and bonds' .pvtu records and their pieces) in @p dir
 /// that a run interrupted after its last checkpoint wrote: those not in the restored series of
 /// @p vtu and @p crack_files (they are written again). Warns of listed ones that are missing.
 void remove_later_dem_snapshots(const std::filesystem::path& dir, const ParticleVtuSeries& vtu,

@@ -25,7 +25,8 @@ distributed::Resume resume_of(const CheckpointSettings& checkpoint)
   return {checkpoint.resume,
           [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
 }
-/// On several ranks: every rank writes its particles' piece of each snapshot (ParticlePieces).
+/// On several ranks: every rank writes its particles' and its bonds' pieces of each snapshot
+/// (ParticlePieces).
 distributed::SnapshotPieces pieces_of(const dem::Model& model, const std::filesystem::path& dir,
                                       bool write_vtu, ParticleVtuSeries* series)
 {
@@ -33,7 +34,11 @@ distributed::SnapshotPieces pieces_of(const dem::Model& model, const std::filesy
     return {};
   auto pieces = std::make_shared<ParticlePieces>(dir, group_names(model), MPI_COMM_WORLD, series);
   return [pieces](const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b,
-                  double time, long step) { pieces->write(p, n_owned, b, time, step); };
+                  const distributed::BondPiece& bonds, double time, long step)
+  {
+    pieces->write(p, n_owned, b, time, step);
+    pieces->write_bonds(bonds.ends, bonds.bonds, bonds.ids, bonds.classes, time, step);
+  };
 }
 } // namespace
 

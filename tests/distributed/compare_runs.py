@@ -9,8 +9,9 @@ usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] [--history-
   of its largest entry;
 - energy_balance_error, a small difference of large energies, agrees to R absolute (a static
   run has none: then neither run may have it);
-- both runs wrote the same files (summary.json's output_files; a particle snapshot written in
-  pieces, particles_NNNNNN.pvtu over particles_NNNNNN_rR.vtu, counts as particles_NNNNNN.vtu) and history.csv has the same
+- both runs wrote the same files (summary.json's output_files; a particle or bond snapshot
+  written in pieces, particles_NNNNNN.pvtu over particles_NNNNNN_rR.vtu and bonds_NNNNNN.pvtu
+  over bonds_NNNNNN_rR.vtu, counts as particles_NNNNNN.vtu, bonds_...) and history.csv has the same
   header and rows, each column within H (default 1e-6) of the column's largest magnitude (in a
   static run a group's force or displacement: of the run's largest force or displacement):
   history.csv holds ten digits, and the net force of a particle in near-equilibrium is a small
@@ -33,12 +34,12 @@ import sys
 
 
 def snapshots_as_one_rank(files):
-    """The output files, a particle snapshot in pieces named as one rank names it (sorted)."""
+    """The output files, a snapshot in pieces named as one rank names it (sorted)."""
     named = set()
     for f in files:
-        if re.fullmatch(r"particles_\d+_r\d+\.vtu", f):
+        if re.fullmatch(r"(particles|bonds)_\d+_r\d+\.vtu", f):
             continue
-        named.add(re.sub(r"^(particles_\d+)\.pvtu$", r"\1.vtu", f))
+        named.add(re.sub(r"^((particles|bonds)_\d+)\.pvtu$", r"\1.vtu", f))
     return sorted(named)
 
 
