@@ -36,8 +36,10 @@ constexpr unsigned id = 0, reference_position = 1, velocity = 4, angular_velocit
 constexpr std::size_t kinematics = 13;
 
 /// Weight of a cell in the mesh partition: one for the cell, this for each of its particles
-/// (the particles' bonds are the work; an empty margin cell costs next to nothing).
-constexpr unsigned particle_weight = 100;
+/// (the particles' bonds are the work; an empty margin cell costs next to nothing: with a
+/// hundred, the empty cells of a mesh over a flight held a tenth of the weight, and a rank with
+/// many of them as many fewer particles).
+constexpr unsigned particle_weight = 1000;
 
 dealii::Point<3> point(const Vec3& x)
 {
@@ -434,7 +436,9 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
                "a particle left the background mesh, or moved more than a cell between two "
                "migrations",
                comm_);
-  // 4. a particle that left: its state and each of its bonds go to its new owner
+  repartition_if_imbalanced();
+  // 4. a particle that left (to a neighbour's cell, or with its cell in a repartition): its
+  // state and each of its bonds go to its new owner
   std::vector<std::int64_t> now_owned;
   now_owned.reserve(handler_.n_locally_owned_particles());
   for (auto it = handler_.begin(); it != handler_.end(); ++it)
@@ -527,6 +531,33 @@ void DistributedParticles::rebuild(const Reactions& reactions, std::vector<doubl
                 }
                 return unpack_state(&*arrived.at(id), particles_, i);
               });
+}
+
+void DistributedParticles::repartition_if_imbalanced()
+{
+  const auto n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm_);
+  const auto mine = std::uint64_t(handler_.n_locally_owned_particles());
+  const auto most = dealii::Utilities::MPI::max(mine, comm_);
+  const auto all = dealii::Utilities::MPI::sum(mine, comm_);
+  if (n_ranks < 2 || double(most) * n_ranks <= max_imbalance * double(all))
+    return;
+  ++n_repartitions_;
+  largest_imbalance_.first = std::max(largest_imbalance_.first, double(most) * n_ranks / all);
+  // the setup's weights with the particles where they are now (only owned cells are asked)
+  auto weights = tria_.signals.weight.connect(
+      [this](const auto& c, const auto) -> unsigned
+      {
+        const dealii::Triangulation<3>::active_cell_iterator cell(c);
+        return 1 + particle_weight * unsigned(handler_.n_particles_in_cell(cell));
+      });
+  handler_.prepare_for_coarsening_and_refinement();
+  tria_.repartition();
+  handler_.unpack_after_coarsening_and_refinement();
+  weights.disconnect();
+  handler_.update_cached_numbers();
+  const auto now =
+      dealii::Utilities::MPI::max(std::uint64_t(handler_.n_locally_owned_particles()), comm_);
+  largest_imbalance_.second = std::max(largest_imbalance_.second, double(now) * n_ranks / all);
 }
 
 std::int64_t DistributedParticles::bond_id(std::size_t k) const

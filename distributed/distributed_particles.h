@@ -12,9 +12,11 @@
 // over the particles' slots; nothing else is exchanged). The stores are rebuilt from the
 // handler only when particles may have left their ranks (needs_rebuild: one particle moved half
 // a cell since the last rebuild): the rank writes its particles' state back into the handler's
-// properties, the handler sorts them into their new cells and ranks and exchanges the ghost
-// layer, each bond of a particle that changed ranks is sent to the particle's new owner, and the
-// stores and the partitioner are made anew. Between rebuilds the ghost set is fixed, so a bond
+// properties, the handler sorts them into their new cells and ranks (and, when one rank owns
+// too many, the mesh is repartitioned by its particles and the handler's particles go with their
+// cells) and exchanges the ghost layer, the state and each bond of a particle that changed
+// ranks, for either reason, are sent to the particle's new owner, and the stores and the
+// partitioner are made anew. Between rebuilds the ghost set is fixed, so a bond
 // computed at one rebuild can be computed until the next whatever its particles do. With
 // contacts the ghosts also carry their radius and mass, and a rebuild comes before two particles
 // that are not in a rank's store could touch one of its own: the ghost layer (one cell) less
@@ -94,6 +96,15 @@ public:
   bool with_contacts() const { return n_properties_ > 2; }
 
   long n_rebuilds() const { return n_rebuilds_; }
+  /// A rebuild repartitions the mesh (cell weights: 1 + 1000 per particle, as at the setup) when
+  /// the rank owning the most particles holds more than this times their mean: particles that
+  /// flew into one rank's cells leave it its neighbours' work as well.
+  static constexpr double max_imbalance = 1.1;
+  /// Rebuilds that repartitioned the mesh (the same on every rank).
+  long n_repartitions() const { return n_repartitions_; }
+  /// Over the repartitions: the largest imbalance (most owned particles / their mean) that
+  /// started one, and the largest one left (0, 0 without any).
+  std::pair<double, double> repartition_imbalance() const { return largest_imbalance_; }
   /// Particles that arrived from other ranks over all rebuilds (this rank).
   long n_arrived() const { return n_arrived_; }
   const BackgroundGrid& grid() const { return grid_; }
@@ -114,6 +125,9 @@ private:
   /// Fills the owned particle with global id `id` at local index i (all but its position: the
   /// handler's location); returns its support reaction.
   using FillOwned = std::function<Reaction(std::int64_t id, std::size_t i)>;
+  /// Collective: when the owned particles are imbalanced beyond max_imbalance, the mesh
+  /// repartitioned by the particles' weights with the handler's particles in it (step-68).
+  void repartition_if_imbalanced();
   /// Slots, ghost exchange, stores and partitioner from the handler's owned particles and the
   /// bond records held; the ghosts' kinematics at the end (collective).
   void build_local(std::vector<double>& records, const FillOwned& fill);
@@ -137,7 +151,8 @@ private:
   std::vector<dem::Vec3> rebuilt_at_; ///< owned positions at the last rebuild
   double skin_ = 0;                   ///< displacement that triggers a rebuild, m
   unsigned n_properties_ = 2;         ///< handler properties a particle carries
-  long n_rebuilds_ = 0, n_arrived_ = 0, n_lost_ = 0;
+  long n_rebuilds_ = 0, n_repartitions_ = 0, n_arrived_ = 0, n_lost_ = 0;
+  std::pair<double, double> largest_imbalance_{0, 0};
   // the per-step exchange: 13 doubles a particle at index 13 slot + c
   std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
   std::vector<double> ghost_buffer_, send_buffer_;

@@ -90,14 +90,14 @@ std::string relative(double a, double b)
   return figure(std::abs(a - b) / std::max(std::abs(b), 1e-300));
 }
 
-/// A bonded HCP cluster (r = 5 mm) with bond dashpots, flying at 20 m/s along x while it spins
-/// and vibrates (seeded random velocities and angular velocities on top).
-dem::Model flying_cluster()
+/// A bonded HCP cluster (r = 5 mm, or @p radius) with bond dashpots, flying at 20 m/s along x
+/// while it spins and vibrates (seeded random velocities and angular velocities on top).
+dem::Model flying_cluster(double radius = 5e-3)
 {
   dem::Model m;
   dem::ParticleSource src;
   src.kind = dem::ParticleSource::Kind::hcp;
-  src.radius = 5e-3;
+  src.radius = radius;
   src.box_size = Vec3(0.05, 0.04, 0.04);
   dem::generate_particles(src, m.particles);
   dem::BondMaterial mat;
@@ -116,14 +116,17 @@ dem::Model flying_cluster()
   return m;
 }
 
-int flying_cluster_check(MPI_Comm comm)
+/// @p balanced: the check also asserts that a repartition leaves the owned particles balanced
+/// within DistributedParticles::max_imbalance (a cluster of many particles a rank: p4est keeps
+/// the 8 children of a cell on one rank, some 16 particles here).
+int flying_cluster_check(MPI_Comm comm, double radius, long steps, bool balanced)
 {
   const unsigned n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const long steps = 4000, record_every = 200;
-  dem::Model serial = flying_cluster(), model = flying_cluster();
-  // the mesh over the whole flight (20 m/s for 4000 steps, some 0.1 m): cells the cut-off
+  const long record_every = steps / 20;
+  dem::Model serial = flying_cluster(radius), model = flying_cluster(radius);
+  // the mesh over the whole flight (20 m/s, some 0.1 m for r = 5 mm): cells the cut-off
   // wide, the cluster crossing a dozen of them
-  const double width = 1.25 * 2 * 5e-3;
+  const double width = 1.25 * 2 * radius;
   const distributed::BackgroundGrid grid =
       distributed::make_background_grid(Vec3(-0.03, -0.03, -0.03), Vec3(0.2, 0.07, 0.07), width);
   dem::ExplicitSolver one(serial.particles, serial.bonds, {}, {}, {}, {serial.time_step});
@@ -146,6 +149,14 @@ int flying_cluster_check(MPI_Comm comm)
   // in step, recording every 200 steps: the energy terms against one rank's at each record
   double worst_energy = 0, worst_balance = 0;
   long split_records = 0;
+  // the owned particles' balance: most owned over their mean
+  auto imbalance = [&]
+  {
+    const auto owned = double(ranks.particles().n_owned());
+    return dealii::Utilities::MPI::max(owned, comm) * n_ranks /
+           dealii::Utilities::MPI::sum(owned, comm);
+  };
+  const double imbalance_at_start = imbalance();
   for (long n = 1; n <= steps; ++n)
   {
     const bool record = n % record_every == 0;
@@ -183,11 +194,17 @@ int flying_cluster_check(MPI_Comm comm)
     model_constants += l;
   const long migrations = ranks.n_migrations();
   const long arrived = dealii::Utilities::MPI::sum(p.n_arrived(), comm);
+  const double imbalance_at_end = imbalance();
+  const auto [before_repartition, after_repartition] = ranks.particles().repartition_imbalance();
   if (root)
     std::cout << n_ranks << " ranks: " << serial.particles.size() << " particles, "
               << serial.bonds.size() << " bonds, flown " << flown << " m, " << migrations
               << " migrations, " << across << " bonds across ranks at the start, " << arrived
-              << " particles changed ranks" << std::endl;
+              << " particles changed ranks; owned particles' imbalance (most / mean) "
+              << imbalance_at_start << " at the start, " << ranks.particles().n_repartitions()
+              << " repartitions, up to " << before_repartition << " before one, up to "
+              << after_repartition << " after one, " << imbalance_at_end << " at the end"
+              << std::endl;
   check(booked_at_start == long(serial.bonds.size()) && booked == long(serial.bonds.size()),
         "bonds booked over the ranks: " + std::to_string(booked_at_start) + " at the start, " +
             std::to_string(booked) + " at the end, model " + std::to_string(serial.bonds.size()));
@@ -197,7 +214,19 @@ int flying_cluster_check(MPI_Comm comm)
             ")");
   check(migrations >= 3, "migrations while flying: " + std::to_string(migrations));
   if (n_ranks > 1)
+  {
     check(across > 0 && arrived > 0, "bonds across ranks, particles changing ranks");
+    const double limit = distributed::DistributedParticles::max_imbalance;
+    check(ranks.particles().n_repartitions() >= 1 && before_repartition > limit &&
+              (!balanced || after_repartition <= limit),
+          "the mesh repartitioned as the cluster flew into a rank's cells: " +
+              std::to_string(ranks.particles().n_repartitions()) + " times, owned particles " +
+              "most / mean up to " + figure(before_repartition) + " before, up to " +
+              figure(after_repartition) + " after (limit " + figure(limit) +
+              (balanced ? ")" : ", not asserted: a few particles a rank)"));
+  }
+  else
+    check(ranks.particles().n_repartitions() == 0, "no repartition on one rank");
 
   // each term to 1e-10 of the largest (the flight's kinetic energy), at every record
   const auto& s = one.energy();
@@ -670,7 +699,9 @@ int main(int argc, char** argv)
   try
   {
     if (name == "flying_cluster")
-      return flying_cluster_check(MPI_COMM_WORLD);
+      return flying_cluster_check(MPI_COMM_WORLD, 5e-3, 4000, false);
+    if (name == "repartitioned_cluster")
+      return flying_cluster_check(MPI_COMM_WORLD, 2.5e-3, 2000, true);
     if (name == "breaking_bar")
       return breaking_bar_check(MPI_COMM_WORLD);
     if (name == "colliding_clusters")
@@ -678,7 +709,8 @@ int main(int argc, char** argv)
     if (name == "shattering_cluster")
       return shattering_cluster_check(MPI_COMM_WORLD);
     if (root)
-      std::cerr << "usage: distributed_check flying_cluster | breaking_bar | colliding_clusters | "
+      std::cerr << "usage: distributed_check flying_cluster | repartitioned_cluster | breaking_bar "
+                   "| colliding_clusters | "
                    "shattering_cluster"
                 << std::endl;
     return 2;
