@@ -16,7 +16,8 @@ namespace dem = dembridge::dem;
 namespace
 {
 /// The classes a case file names, with the keys each takes over from Bonds or Damage.
-const char* const class_sections[] = {"Bond class grain_boundary", "Bond class weak_plane"};
+const char* const class_sections[] = {"Bond class grain_boundary", "Bond class weak_plane",
+                                      "Bond class basal"};
 
 /// @p key's number, or @p fallback when it is empty.
 double number_or(ParameterHandler& prm, const std::string& section, const std::string& key,
@@ -98,6 +99,11 @@ void declare_microstructure_parameters(ParameterHandler& prm)
                     "equiaxed grains instead of columns; 0: none.");
   prm.declare_entry("granular grain diameter", "0", Double(0),
                     "Mean diameter of the granular layer's grains (m, equivalent sphere).");
+  prm.declare_entry("basal cone angle", "0", Double(0, 90),
+                    "Half-angle (degrees) of a cone about each grain's c-axis: a bond inside a "
+                    "grain whose axis lies within it crosses the grain's basal planes nearly "
+                    "normally and is a basal bond (section Bond class basal); 0: none. Needs "
+                    "grains.");
   prm.declare_entry("weak plane normal", "1, 0, 0", vector3, "Normal of the weak planes.");
   prm.declare_entry("weak plane offsets", "", List(Double(), 0),
                     "Weak planes normal . x = offset (m, the normal made unit); empty: none. A "
@@ -122,6 +128,13 @@ void declare_microstructure_parameters(ParameterHandler& prm)
                             ", for this class (mean; the scatter is Damage's); empty: the Damage "
                             "value. The failure law, friction angle, moment factor and fracture "
                             "energies are the specimen's (Damage).");
+    if (std::string(section) == "Bond class basal")
+      prm.declare_entry(
+          "smooth joint", "false", Bool(),
+          "true: each basal bond is a smooth joint whose normal is its grain's c-axis: it splits "
+          "its force into normal and shear against the basal plane, not its own axis, fails on "
+          "those and carries no couple, so its shear is the slip along the basal plane whatever "
+          "the bond's axis. false: the bonds follow the bond law along their own axes.");
     if (std::string(section) == "Bond class weak_plane")
       prm.declare_entry(
           "smooth joint", "false", Bool(),
@@ -163,6 +176,10 @@ void parse_grains_and_planes(ParameterHandler& prm, dem::MicrostructureConfig& c
   g.c_axis_spread = prm.get_double("c-axis spread");
   g.granular_thickness = prm.get_double("granular layer thickness");
   g.granular_diameter = prm.get_double("granular grain diameter");
+  c.basal_cone = prm.get_double("basal cone angle");
+  if (c.basal_cone > 0 && !g.enabled)
+    throw dem::InputError("Microstructure/basal cone angle: set, but the case has no grains "
+                          "(Microstructure/grains = columnar gives them their c-axes)");
   const auto offsets =
       dem::parse_numbers(prm.get("weak plane offsets"), "Microstructure/weak plane offsets");
   const double spacing = prm.get_double("weak plane spacing");
@@ -184,10 +201,12 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
   parse_grains_and_planes(prm, c);
   const auto& g = c.grains;
 
-  const bool has_class[] = {g.enabled, c.weak_planes.has_value()};
-  const char* const needs[] = {"Microstructure/grains = columnar", "Microstructure/weak plane "
-                                                                   "offsets"};
-  for (int k = 0; k < 2; ++k)
+  const bool has_class[] = {g.enabled, c.weak_planes.has_value(), c.basal_cone > 0};
+  const char* const needs[] = {"Microstructure/grains = columnar",
+                               "Microstructure/weak plane offsets",
+                               "Microstructure/basal cone angle"};
+  const char* const class_bonds[] = {"grain-boundary", "weak-plane", "basal"};
+  for (int k = 0; k < 3; ++k)
   {
     const std::string section = class_sections[k];
     prm.enter_subsection(section);
@@ -224,21 +243,20 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     cls.tensile_strength = value("tensile strength", cls.tensile_strength);
     cls.shear_strength = value("shear strength", cls.shear_strength);
     cls.cohesion = value("cohesion", cls.cohesion);
-    const bool smooth = k == 1 && prm.get_bool("smooth joint");
+    const bool smooth = k > 0 && prm.get_bool("smooth joint");
     if (k == 1)
       c.joint_friction = joint_friction(prm, section, smooth, c.joint_friction);
     prm.leave_subsection();
     if (smooth && !has_class[k])
-      throw dem::InputError(section +
-                            "/smooth joint: true, but the case has no weak-plane bonds (" +
-                            needs[k] + " makes them)");
+      throw dem::InputError(section + "/smooth joint: true, but the case has no " + class_bonds[k] +
+                            " bonds (" + needs[k] + " makes them)");
     if (smooth)
-      c.smooth_joint = true;
+      (k == 1 ? c.smooth_joint : c.basal_smooth_joint) = true;
     if (set && !has_class[k])
       throw dem::InputError(section + "/" + first_set + ": set, but the case has no such bonds (" +
                             needs[k] + " makes them)");
     if (set)
-      (k == 0 ? c.grain_boundary : c.weak_plane) = cls;
+      (k == 0 ? c.grain_boundary : k == 1 ? c.weak_plane : c.basal) = cls;
   }
   return c;
 }

@@ -145,7 +145,10 @@ void add_bond_class_summary(nlohmann::json& j, const dem::ParticleStore& p, cons
   {
     j["n_grains"] = std::set<std::int32_t>(p.grain.begin(), p.grain.end()).size();
     j["broken_bonds_intergranular"] = intergranular;
-    j["broken_bonds_transgranular"] = broken[0] + broken[1] + broken[2] - intergranular;
+    long all_broken = 0;
+    for (long n : broken)
+      all_broken += n;
+    j["broken_bonds_transgranular"] = all_broken - intergranular;
   }
 }
 

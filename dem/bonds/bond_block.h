@@ -45,10 +45,13 @@ struct BondLawArrays
   const double *x, *q, *v, *w;
   const std::int32_t *a, *b;
   const double *L0, *e0, *kn, *ks, *ktor, *kben, *s, *ct, *cr;
-  /// Smooth joints (smooth_joint.h): the classes (the weak-plane bonds are the joints) and the
-  /// planes' normal N; null and zero without joints.
+  /// Smooth joints (smooth_joint.h): the classes (the weak-plane bonds are joints where
+  /// plane_joints, the basal bonds where basal_normal is set), the planes' normal N and the
+  /// basal bonds' per-bond normals; null, false and zero without joints.
   const BondClass* bond_class;
+  bool plane_joints;
   double joint_normal[3];
+  const double* basal_normal;
 
   BondLawArrays(const ParticleStore& p, const BondStore& bonds)
       : x(raw_doubles(p.position)), q(raw_doubles(p.orientation)), v(raw_doubles(p.velocity)),
@@ -57,11 +60,29 @@ struct BondLawArrays
         ks(bonds.ks.data()), ktor(bonds.ktor.data()), kben(bonds.kben.data()),
         s(bonds.contact_fraction.data()), ct(bonds.damping_force.data()),
         cr(bonds.damping_moment.data()),
-        bond_class(bonds.has_smooth_joints() ? bonds.bond_class.data() : nullptr), joint_normal{}
+        bond_class(bonds.has_smooth_joints() ? bonds.bond_class.data() : nullptr),
+        plane_joints(bonds.has_plane_joints()), joint_normal{},
+        basal_normal(bonds.has_basal_joints() ? raw_doubles(bonds.basal_normal) : nullptr)
   {
-    if (bonds.has_smooth_joints())
+    if (plane_joints)
       for (int d = 0; d < 3; ++d)
         joint_normal[d] = (*bonds.smooth_joint_normal)[d];
+  }
+
+  /// Whether bond k is a smooth joint, and then its normal N (unsigned) in @p N.
+  bool joint_of(std::size_t k, double* N) const
+  {
+    if (bond_class[k] == BondClass::weak_plane && plane_joints)
+    {
+      N[0] = joint_normal[0], N[1] = joint_normal[1], N[2] = joint_normal[2];
+      return true;
+    }
+    if (bond_class[k] == BondClass::basal && basal_normal)
+    {
+      N[0] = basal_normal[3 * k], N[1] = basal_normal[3 * k + 1], N[2] = basal_normal[3 * k + 2];
+      return true;
+    }
+    return false;
   }
 };
 
@@ -230,8 +251,9 @@ template <int S>
   return v;
 }
 
-/// The law on a block's lanes; with `smooth`, the weak-plane bonds among them are smooth joints
-/// (smooth_joint.h: n_0 = sign(N . e_0) N, eq. 5), and f.n is written for every lane.
+/// The law on a block's lanes; with `smooth`, the weak-plane and basal bonds among them are
+/// smooth joints where the store has their normals (smooth_joint.h: n_0 = sign(N . e_0) N,
+/// eq. 5, N the plane's normal or the basal bond's own), and f.n is written for every lane.
 template <bool dashpots, bool smooth>
 [[gnu::always_inline]] inline void
 block_law(const BondLawArrays& in, std::size_t k0, const std::int32_t* bond, const Lanes* xa,
@@ -242,15 +264,17 @@ block_law(const BondLawArrays& in, std::size_t k0, const std::int32_t* bond, con
   if constexpr (smooth)
   {
     JointOf<Lanes> joint;
+    Lanes N[3]{};
     bool any = false;
     for (int j = 0; j < BondBlock::W; ++j)
     {
-      const bool on = in.bond_class[k0 + std::size_t(bond[j])] == BondClass::weak_plane;
+      double n[3] = {0, 0, 0};
+      const bool on = in.joint_of(k0 + std::size_t(bond[j]), n);
       joint.on[j] = on ? -1 : 0, any |= on;
+      N[0][j] = n[0], N[1][j] = n[1], N[2][j] = n[2];
     }
     if (any) // why: a block without joints runs the unified law alone
     {
-      const double* N = in.joint_normal;
       const LaneIndices flip = N[0] * e0[0] + N[1] * e0[1] + N[2] * e0[2] < 0;
       const Lanes sign = flip ? Lanes{} - 1.0 : Lanes{} + 1.0;
       for (int d = 0; d < 3; ++d)
@@ -268,8 +292,8 @@ block_law(const BondLawArrays& in, std::size_t k0, const std::int32_t* bond, con
 
 /// Evaluates bonds k0 .. k0 + m - 1 (m <= W) into @p out: the records always, the rows when
 /// @p rows (steps that record forces or test failure). Everything from the gather to the
-/// records stays in registers. With `smooth`, the weak-plane bonds are smooth joints
-/// (BondLawArrays::bond_class) and the rows hold their failure axes.
+/// records stays in registers. With `smooth`, the weak-plane and basal bonds are smooth joints
+/// (BondLawArrays::joint_of) and the rows hold their failure axes.
 template <bool dashpots, bool rows, bool smooth = false>
 inline void bond_law_block(const BondLawArrays& in, std::size_t k0, int m, BondBlock& out)
 {

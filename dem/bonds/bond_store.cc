@@ -41,7 +41,8 @@ void BondStore::reorder(const std::vector<std::size_t>& order)
   permute(a), permute(b), permute(rest_length), permute(rest_axis);
   permute(kn), permute(ks), permute(ktor), permute(kben);
   permute(contact_fraction), permute(radius), permute(damping_force), permute(damping_moment);
-  permute(model), permute(state), permute(bond_class), permute(force), permute(moment);
+  permute(model), permute(state), permute(bond_class), permute(basal_normal);
+  permute(force), permute(moment);
   permute(tensile_strength), permute(shear_strength), permute(damage), permute(kappa_max);
   permute(kappa_ultimate), permute(dissipated), permute(failure_mode);
 }
@@ -73,8 +74,8 @@ std::size_t BondStore::memory_bytes() const
   return bytes(a) + bytes(b) + bytes(rest_length) + bytes(rest_axis) + bytes(kn) + bytes(ks) +
          bytes(ktor) + bytes(kben) + bytes(contact_fraction) + bytes(radius) +
          bytes(damping_force) + bytes(damping_moment) + bytes(model) + bytes(state) +
-         bytes(bond_class) + bytes(force) + bytes(moment) + bytes(tensile_strength) +
-         bytes(shear_strength) + bytes(damage) + bytes(kappa_max) + bytes(kappa_ultimate) +
-         bytes(dissipated) + bytes(failure_mode);
+         bytes(bond_class) + bytes(basal_normal) + bytes(force) + bytes(moment) +
+         bytes(tensile_strength) + bytes(shear_strength) + bytes(damage) + bytes(kappa_max) +
+         bytes(kappa_ultimate) + bytes(dissipated) + bytes(failure_mode);
 }
 } // namespace dembridge::dem

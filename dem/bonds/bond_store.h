@@ -43,6 +43,10 @@ struct BondStore
   /// With a value N (unit), the weak-plane bonds are smooth joints across planes of normal N
   /// (bonds/smooth_joint.h); unset: every bond follows the unified law (bond_kernel.h).
   std::optional<Vec3> smooth_joint_normal;
+  /// With basal joints: per bond, the unit normal a basal bond resolves its force against (its
+  /// grain's c-axis, bonds/smooth_joint.h); read for the basal bonds only. Empty: the basal
+  /// bonds, if any, follow the unified law.
+  std::vector<Vec3> basal_normal;
   /// With a value, the pairs across the smooth joints' planes meet as unbonded joints once
   /// their bond is broken or where they have none (contacts/joint_contact.h): the planes and
   /// the joints' friction. Unset: they meet as spheres (contacts/contact_kernel.h).
@@ -77,17 +81,25 @@ struct BondStore
     force_records_dropped = true;
   }
   bool has_failure() const { return failure.mode != FailureMode::none; }
-  bool has_smooth_joints() const { return smooth_joint_normal.has_value() && !bond_class.empty(); }
+  /// Whether the weak-plane bonds are smooth joints.
+  bool has_plane_joints() const { return smooth_joint_normal.has_value() && !bond_class.empty(); }
+  /// Whether the basal bonds are smooth joints.
+  bool has_basal_joints() const { return !basal_normal.empty() && !bond_class.empty(); }
+  /// Whether any bond may be a smooth joint (the force loop's joint instantiation).
+  bool has_smooth_joints() const { return has_plane_joints() || has_basal_joints(); }
   /// Whether bond k is a smooth joint.
-  bool is_smooth_joint(std::size_t k) const
-  {
-    return has_smooth_joints() && bond_class[k] == BondClass::weak_plane;
-  }
+  bool is_smooth_joint(std::size_t k) const { return joint_normal(k) != nullptr; }
   /// The plane normal bond k resolves its force against (bond_law's joint_normal), null for a
   /// bond that follows the unified law.
   const Vec3* joint_normal(std::size_t k) const
   {
-    return is_smooth_joint(k) ? &*smooth_joint_normal : nullptr;
+    if (bond_class.empty())
+      return nullptr;
+    if (bond_class[k] == BondClass::weak_plane && smooth_joint_normal)
+      return &*smooth_joint_normal;
+    if (bond_class[k] == BondClass::basal && !basal_normal.empty())
+      return &basal_normal[k];
+    return nullptr;
   }
   /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
   double load_factor(std::size_t k) const

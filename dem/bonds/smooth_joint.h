@@ -5,6 +5,8 @@
 // J. Mech. Phys. Solids 60, 1023-1043, YADE's JCFpm, eq. 6-9). Particles sliding along the plane
 // then slide on it, rather than having to ride up and over one another, so the joint's
 // stiffness and strength do not depend on how the particles happen to sit across the plane.
+// Two sets use it: the weak-plane bonds (N the planes' normal) and the basal bonds of a grain's
+// interior (N the grain's c-axis, the basal planes' normal; microstructure.h).
 //
 // With D the relative displacement of a towards b at the bond's contact point (bond_kernel.h:
 // D = delta_n e + delta_s, the unified law's deformation) and n the joint's unit normal, from

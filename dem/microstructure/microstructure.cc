@@ -1,4 +1,6 @@
 #include "dem/microstructure/microstructure.h"
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 namespace dembridge::dem
@@ -31,7 +33,8 @@ std::array<BondClassConfig, bond_class_count> bond_class_configs(const Microstru
   damage.validate(); // the specimen's own strengths first: the classes default to them
   const BondClassConfig bulk = BondClassConfig::of_specimen(material, damage);
   std::array<BondClassConfig, bond_class_count> classes{bulk, config.grain_boundary.value_or(bulk),
-                                                        config.weak_plane.value_or(bulk)};
+                                                        config.weak_plane.value_or(bulk),
+                                                        config.basal.value_or(bulk)};
   for (std::size_t k = 1; k < bond_class_count; ++k)
   {
     const std::string where = section(BondClass(k));
@@ -97,12 +100,26 @@ apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig&
     }
   }
   b.bond_class.assign(nb, BondClass::intra_grain);
+  const bool basal = config.basal_cone > 0 && !p.grain.empty();
+  const double basal_cos = std::cos(config.basal_cone * std::numbers::pi / 180);
+  if (basal && config.basal_smooth_joint)
+    b.basal_normal.assign(nb, Vec3::Zero());
   for (std::size_t k = 0; k < nb; ++k)
   {
     const int i = b.a[k], j = b.b[k];
     BondClass c = BondClass::intra_grain;
     if (!p.grain.empty() && p.grain[std::size_t(i)] != p.grain[std::size_t(j)])
       c = BondClass::grain_boundary;
+    else if (basal)
+    {
+      const Vec3& c_axis = summary.grains[std::size_t(p.grain[std::size_t(i)])].c_axis;
+      if (std::abs(b.rest_axis[k].dot(c_axis)) >= basal_cos)
+      {
+        c = BondClass::basal;
+        if (!b.basal_normal.empty())
+          b.basal_normal[k] = c_axis;
+      }
+    }
     if (planes)
     {
       const PlaneCrossing x = crossed_planes(*planes, p.reference_position[std::size_t(i)],

@@ -6,6 +6,8 @@
 // Each bond, once formed, is classed by the particles it joins:
 //   weak_plane      its axis crosses a weak plane (whatever the grains)
 //   grain_boundary  otherwise, its particles lie in two grains
+//   basal           otherwise, with a basal cone: its axis at formation e_0 lies within the
+//                   cone's half-angle theta_b of its grain's c-axis c, |e_0 . c| >= cos theta_b
 //   intra_grain     otherwise
 // and takes its class's constants: the stiffnesses and contact point of bond_model.h from the
 // class's bond material, its strengths drawn around the class's means (bond_strength.h; the
@@ -13,6 +15,15 @@
 // specimen's). Intra-grain bonds are the Bonds and Damage values; every class value defaults to
 // them. A class only picks per-bond constants at formation: the force loops read them as they
 // read a homogeneous specimen's.
+//
+// Basal bonds: ice deforms by slip on its basal planes (normal c) far more easily than by any
+// other system (Schulson & Duval 2009, Creep and Fracture of Ice, ch. 5), so a grain's interior
+// is weak in shear on its basal planes. The bonds that cross them nearly normally (near c) take
+// that weakness: a class of their own (its stiffness and strengths), optionally smooth joints
+// whose normal is the grain's c-axis (bonds/smooth_joint.h), which shear by the relative
+// displacement along the basal plane whatever their axis. Columnar ice has its c-axes across the
+// columns, so a load along the columns lies in every basal plane (no resolved shear), while a
+// load across them shears the basal planes of grains whose c-axis is inclined to it.
 //
 // Springs in series (the check, tests/dem/test_microstructure.cc): on the simple cubic
 // lattice with spacing d, planes normal to x every n layers whose bonds are alpha times as
@@ -46,8 +57,12 @@ struct MicrostructureConfig
 {
   ColumnarGrainsConfig grains;
   std::optional<WeakPlaneSet> weak_planes;
-  /// Grain-boundary and weak-plane bonds; unset: the Bonds and Damage values.
-  std::optional<BondClassConfig> grain_boundary, weak_plane;
+  /// Grain-boundary, weak-plane and basal bonds; unset: the Bonds and Damage values.
+  std::optional<BondClassConfig> grain_boundary, weak_plane, basal;
+  /// Half-angle theta_b of the basal cone about each grain's c-axis, degrees; 0: no basal bonds.
+  double basal_cone = 0;
+  /// The basal bonds are smooth joints whose normal is their grain's c-axis.
+  bool basal_smooth_joint = false;
   /// The weak-plane bonds are smooth joints (bonds/smooth_joint.h) across the planes.
   bool smooth_joint = false;
   /// With smooth_joint: mu_j of the pairs across the planes once unbonded
@@ -82,9 +97,9 @@ struct MicrostructureSummary
 /// Assigns the grains (p.grain) and classes the bonds just formed (bonds.bond_class), giving
 /// each non-intra-grain bond its class's stiffness constants (and with config.smooth_joint the
 /// store the planes' normal, bonds.smooth_joint_normal) (strengths follow in
-/// assign_bond_strengths with class_strength_means). Throws InputError naming the key when the
-/// grains or planes do not fit the packing (column_grains.h, weak_planes.h) or a plane crosses
-/// no bond.
+/// assign_bond_strengths with class_strength_means; with config.basal_smooth_joint each basal
+/// bond's c-axis, bonds.basal_normal). Throws InputError naming the key when the grains or planes
+/// do not fit the packing (column_grains.h, weak_planes.h) or a plane crosses no bond.
 MicrostructureSummary
 apply_microstructure(ParticleStore& p, BondStore& bonds, const MicrostructureConfig& config,
                      const std::array<BondClassConfig, bond_class_count>& classes);

@@ -133,6 +133,7 @@ std::vector<std::size_t> visit_bonds(StateArchive& a, BondStore& b)
   if (!b.records_forces())
     stored.drop_force_records();
   stored.reorder(order);
+  stored.basal_normal = b.basal_normal; // the case's grains' c-axes, in this model's order
   b = std::move(stored);
   std::vector<std::size_t> bond_map(n);
   for (std::size_t k = 0; k < n; ++k)

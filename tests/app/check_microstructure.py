@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks the microstructure's outputs of a finished run (plain python3: json, csv).
 
-    check_microstructure.py OUTPUT_DIR
+    check_microstructure.py OUTPUT_DIR [COLUMN_AXIS]
 
 - the last particles_*.vtu has point data grain_id, the last bonds_*.vtu cell data class and
   the field data class_names;
@@ -10,7 +10,10 @@
 - summary.json: broken_bonds_per_class adds up to n_broken_bonds and counts what cracks.csv
   lists per class; broken_bonds_intergranular + broken_bonds_transgranular = n_broken_bonds
   and the intergranular ones are the rows of cracks.csv saying so; bonds_per_class adds up to
-  n_bonds (when given).
+  n_bonds (when given);
+- a crack of a basal bond is transgranular; with COLUMN_AXIS (x, y or z; a case whose basal
+  bonds are smooth joints) there is at least one, and each lies in its grain's basal plane: its
+  normal, the grain's c-axis, has no component along the column axis.
 Prints what it compares; exit 1 on any failed check.
 """
 import csv
@@ -61,6 +64,14 @@ check(all(r["grains"] == "intergranular" for r in rows if r["class"] == "grain_b
       "grain_boundary cracks are intergranular")
 check(all(r["grains"] == "transgranular" for r in rows if r["class"] == "intra_grain"),
       "intra_grain cracks are transgranular")
+check(all(r["grains"] == "transgranular" for r in rows if r["class"] == "basal"),
+      "basal cracks are transgranular")
+if len(sys.argv) > 2:
+    axis = "axis_" + sys.argv[2]
+    basal = [r for r in rows if r["class"] == "basal"]
+    along = max((abs(float(r[axis])) for r in basal), default=0.0)
+    check(len(basal) > 0 and along < 1e-9,
+          f"{len(basal)} basal cracks, normals along the column axis at most {along:.3g}")
 if "n_bonds" in summary:
     check(sum(summary["bonds_per_class"].values()) == summary["n_bonds"],
           "bonds_per_class adds up to n_bonds")

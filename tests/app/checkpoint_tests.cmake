@@ -86,6 +86,15 @@ checkpoint_case(columnar ${EX}/columnar_tension.prm FLAGS --expect-cracks
       "Group corner_y/point=0, 0.04, 0" "Load pull/value=2.4e-5, 0, 0"
       "Output/checkpoint interval=0.0015" "Contacts/model=linear"
       "Contacts/normal stiffness=1.5e7" "Contacts/friction coefficient=0.5")
+# Basal joints (examples/columnar_compression.prm cut down to 0.05 x 0.03 x 0.03 m, 1,147
+# bonds of which 91 basal smooth joints, 46 of them broken by the end): each basal bond's normal,
+# its grain's c-axis, is the case's and comes back with the classes (without it the resumed
+# basal bonds would follow the unified law and the files differ).
+checkpoint_case(basal ${EX}/columnar_compression.prm FLAGS --expect-cracks
+  SET "Particles/box size=0.05, 0.03, 0.03" "Group corner_y/point=0, 0.03, 0"
+      "Load drive/value=-6e-5, 0, 0" "Microstructure/basal cone angle=30"
+      "Bond class basal/smooth joint=true" "Bond class basal/shear strength=0.3e6"
+      "Output/checkpoint interval=0.0015")
 # A pressure that follows the axial stress (examples/columnar_biaxial.prm at R = 0.3 cut down
 # to 0.04 x 0.04 x 0.03 m, 421 spheres, about 700 bonds broken): the last step's pressure
 # comes back from the checkpoint (without it the resumed history.csv differs).
