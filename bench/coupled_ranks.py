@@ -14,7 +14,7 @@ load average at its start beside the whole invocation's. `mpirun --bind-to none`
 otherwise binds each rank, and a rank's threads share one core.
 
     /usr/bin/python3 bench/coupled_ranks.py [--binary NAME=PATH]... [--ranks 1,2]
-        [--cases bending,notched] [--repeat 1] [--output FILE] [--work DIR]
+        [--cases bending,notched] [--repeat 1] [--note TEXT] [--output FILE] [--work DIR]
 
 Writes bench/results/coupled_bending_ranks.json unless --output names another file; prints a
 table. The default binary is build/app/dembridge, named "current".
@@ -65,7 +65,8 @@ def run_once(exe, ranks, case, end_time, out):
     return dict(ranks=ranks, wall_seconds=wall, solver_seconds=s["solver_seconds"],
                 coupling_seconds=s["coupling_seconds"], steps=s["steps"],
                 load_average_at_start=load, midspan_deflection=s.get("midspan_deflection"),
-                n_fe_dofs=s.get("n_fe_dofs"), n_interface_particles=s.get("n_interface_particles"))
+                n_fe_dofs=s.get("n_fe_dofs"), n_interface_particles=s.get("n_interface_particles"),
+                git_commit=s.get("git_commit"))
 
 
 def main():
@@ -75,6 +76,7 @@ def main():
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--cases", default="bending")
     ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--note", default="", help="a line kept in the JSON (what the binaries are)")
     ap.add_argument("--output", default=os.path.join(HERE, "results",
                                                      "coupled_bending_ranks.json"))
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-output",
@@ -90,7 +92,7 @@ def main():
     for c in cases:
         if c not in CASES:
             sys.exit("coupled_ranks.py: --cases: unknown case '%s' (%s)" % (c, ", ".join(CASES)))
-    results = dict(benchmark="coupled_ranks", machine=machine(),
+    results = dict(benchmark="coupled_ranks", note=a.note, machine=machine(),
                    binaries={name: exe for name, exe in binaries}, runs=[])
     for case in cases:
         prm, end_time = CASES[case]
