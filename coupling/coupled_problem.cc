@@ -84,10 +84,9 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
       }
     }
   }
-  if (transfer_.parallel())
-    MPI_Bcast(rho_.data(), int(rho_.size()), MPI_DOUBLE, 0, comm_);
-  // rho = G v^_I - v^_p + g^n / dt
-  transfer_.gather(fe_->trial_velocity(), slots_);
+  // rho = G v^_I - v^_p + g^n / dt; rank 0's part reaches the other ranks with the FE values
+  // (the step's one reduction)
+  transfer_.gather(fe_->trial_velocity(), slots_, rho_);
   transfer_.interpolate(slots_, points_);
   for (std::size_t k = 0; k < 3 * n; ++k)
     rho_[k] += points_[k];

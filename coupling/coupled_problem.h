@@ -41,7 +41,10 @@
 // is checked with the tie counted as internal (its work not credited).
 //
 // MPI: the continuum is distributed (p4est + PETSc); the particles live on rank 0, whose DEM
-// solver drives the step, while the other ranks run the same FE phases and collectives.
+// solver drives the step, while the other ranks run the same FE phases and collectives. Every
+// rank holds the whole interface (transfer.h) and solves for the tie forces redundantly: a step
+// adds one MPI_Allreduce (the FE velocities at the interface nodes with rank 0's particle terms)
+// to the continuum's own ghost exchanges, and each rank adds the tie's forces to its own DoFs.
 #include "coupling/adaptive_region.h"
 #include "coupling/blending.h"
 #include "coupling/continuum_tensor.h"

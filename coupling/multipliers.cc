@@ -54,8 +54,8 @@ void MultiplierSolver::setup(const PointTransfer& transfer,
     if (!(d > 0))
       throw std::runtime_error("Coupling: a tie has no stiffness to act on (zero row in the "
                                "lumped constraint matrix)");
-  if (solve_ == ConstraintSolve::exact && tying_ == Tying::particle && !transfer.parallel())
-    factorise();
+  if (solve_ == ConstraintSolve::exact && tying_ == Tying::particle)
+    factorise(); // on every rank alike: each holds the whole interface (transfer.h)
 }
 
 // S^c = D + G W_c G^T per component c, D = diag(1 / m_p), W_c = diag(M^-1) at the slots, is
@@ -326,7 +326,7 @@ bool MultiplierSolver::slot_reaction(std::vector<double>& slots) const
 {
   // G^T q = G^T D^-1 (b - G y) = G^T D^-1 b - (A - W^-1) y = W^-1 y = M y on the slot
   // components that move (A y = G^T D^-1 b there); a fixed component needs the spread
-  if (!factorised_ || any_fixed_slot_ || G_->parallel())
+  if (!factorised_ || any_fixed_slot_)
     return false;
   slots.resize(slots_.size()); // slots_ still holds y: nothing since solve() has used it
   for (std::size_t k = 0; k < slots_.size(); ++k)
@@ -337,7 +337,6 @@ bool MultiplierSolver::slot_reaction(std::vector<double>& slots) const
 void MultiplierSolver::apply_schur(const std::vector<double>& x, std::vector<double>& y)
 {
   G_->spread(x, slots_);
-  G_->assemble(slots_);
   for (std::size_t k = 0; k < slots_.size(); ++k)
     slots_[k] *= inv_M_[k];
   G_->interpolate(slots_, y);
@@ -355,7 +354,7 @@ void MultiplierSolver::apply_constraint_matrix(const std::vector<double>& x, std
   }
   G_->interpolate(x, points_); // G lambda
   apply_schur(points_, Sq_);   // S G lambda (Sq_ as work)
-  G_->spread(Sq_, y);          // G^T S G lambda (one process: nothing to assemble)
+  G_->spread(Sq_, y);          // G^T S G lambda
 }
 
 unsigned int MultiplierSolver::solve(const std::vector<double>& rho, const double dt,

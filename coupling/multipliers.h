@@ -27,12 +27,13 @@
 //   lumped  the constraint matrix A (S, or G^T S G) replaced by its row-sum diagonal A 1 (the
 //           paper's choice: local, one division per multiplier); the tie is then met only
 //           approximately each step, the gap term carries the rest into the next step;
-//   exact   on one process with particle tying: S is constant (fixed G and masses); its
-//           inverse is applied through the Woodbury identity on the slots (multipliers.cc),
-//           whose small matrix is inverted once per connected group of slots (dense up to 2000
-//           slots, else a sparse Cholesky factor); each step is a spread, one matrix-vector
-//           product per group and an interpolation, and the FE nodes' share -G^T q = -M y needs
-//           no second spread. Otherwise
+//   exact   with particle tying: S is constant (fixed G and masses); its inverse is applied
+//           through the Woodbury identity on the slots (multipliers.cc), whose small matrix is
+//           inverted once per connected group of slots (dense up to 2000 slots, else a sparse
+//           Cholesky factor); each step is a spread, one matrix-vector product per group and an
+//           interpolation, and the FE nodes' share -G^T q = -M y needs no second spread. Under
+//           MPI every rank holds the whole interface (transfer.h) and does the same: the solve
+//           needs no communication. With node tying
 //           conjugate gradients on A, the lumped diagonal as preconditioner, to a relative residual
 //           `tolerance` (a few iterations: A is dominated by its particle-mass diagonal). On the
 //           bending beam's 600 interface particles the factorised solve takes 8 % of the run where
@@ -56,7 +57,7 @@ enum class Tying
 enum class ConstraintSolve
 {
   lumped, ///< row-sum diagonal of the constraint matrix
-  exact   ///< preconditioned conjugate gradients to `tolerance`
+  exact   ///< factorised (particle tying) or preconditioned conjugate gradients to `tolerance`
 };
 
 class MultiplierSolver
@@ -69,11 +70,12 @@ public:
              double tolerance, unsigned int max_iterations);
 
   /// The tie forces q (3 per interface particle, every rank) for the residual rho; also leaves
-  /// S q in `schur_q()` for the gap update. Collective. Returns the CG iterations (0: lumped).
+  /// S q in `schur_q()` for the gap update. Every rank alike, no communication. Returns the CG
+  /// iterations (0: lumped or factorised).
   unsigned int solve(const std::vector<double>& rho, double dt, std::vector<double>& q);
   const std::vector<double>& schur_q() const { return Sq_; }
 
-  /// y = S x = G M^-1 G^T x + x / m (collective).
+  /// y = S x = G M^-1 G^T x + x / m.
   void apply_schur(const std::vector<double>& x, std::vector<double>& y);
   /// Lumped diagonal of the constraint matrix (per multiplier and component).
   const std::vector<double>& lumped_diagonal() const { return diagonal_; }
@@ -91,8 +93,8 @@ private:
   void solve_factorised(const std::vector<double>& b, std::vector<double>& q);
   void solve_blocks();
 
-  /// The slots' matrix A_c of the Woodbury form of S^-1 per component, factorised (one
-  /// process, particle tying, exact solve; multipliers.cc).
+  /// The slots' matrix A_c of the Woodbury form of S^-1 per component, factorised (particle
+  /// tying, exact solve; multipliers.cc).
   using Sparse = Eigen::SparseMatrix<double>;
   static constexpr std::size_t dense_slots = 2000; ///< up to this many slots: dense inverses
   /// The steps of factorise() (multipliers.cc).

@@ -4,9 +4,10 @@
 #include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/fe/fe_q.h>
 
-#include <petscvec.h>
-
+#include <algorithm>
+#include <array>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -105,6 +106,74 @@ ShapeRows shape_rows(const fem::ExplicitDynamics& fe, Locator& locator, std::siz
   r.n_slots = slot_of.size();
   return r;
 }
+
+/// Every rank's rows on every rank (collective): the points' rows in point order, from the rank
+/// that holds each point, over the nodes all of them touch, numbered as first met in that order:
+/// the same numbering on every rank and on any number of ranks (so that a step's sums run in
+/// the same order as on one).
+ShapeRows shared_rows(const ShapeRows& mine, MPI_Comm comm)
+{
+  std::vector<types::global_dof_index> ids; // per entry: point, x, y and z DoF
+  std::vector<double> values;               // per entry: N, node position
+  for (std::size_t p = 0; p < mine.rows.size(); ++p)
+    for (const auto& [slot, N] : mine.rows[p])
+    {
+      ids.push_back(p);
+      for (unsigned int d = 0; d < 3; ++d)
+        ids.push_back(mine.slot_dofs[3 * slot + d]);
+      values.push_back(N);
+      for (unsigned int d = 0; d < 3; ++d)
+        values.push_back(mine.slot_points[slot][d]);
+    }
+  const auto all_ids = Utilities::MPI::all_gather(comm, ids);
+  const auto all_values = Utilities::MPI::all_gather(comm, values);
+  // each point's entries from the first rank that holds it (the locator gives it one)
+  const std::size_t n_points = mine.rows.size();
+  std::vector<std::pair<unsigned int, std::size_t>> first(n_points, {~0u, 0}); // rank, entry
+  for (auto rank = unsigned(all_ids.size()); rank-- > 0;) // the lowest rank last: it wins
+  {
+    const auto& id = all_ids[rank];
+    for (std::size_t e = 0; e < id.size() / 4; ++e)
+      if (e == 0 || id[4 * (e - 1)] != id[4 * e]) // the first entry of a point's row
+        first[id[4 * e]] = {rank, e};
+  }
+  ShapeRows r;
+  r.rows.resize(n_points);
+  std::map<types::global_dof_index, unsigned int> slot_of; // x-DoF of a node -> slot
+  for (std::size_t p = 0; p < n_points; ++p)
+  {
+    const unsigned int rank = first[p].first;
+    if (rank == ~0u)
+      continue;
+    const auto& id = all_ids[rank];
+    const auto& value = all_values[rank];
+    std::size_t end = first[p].second;
+    while (end < id.size() / 4 && id[4 * end] == p)
+      ++end;
+    // the row's nodes by position, not by the cell's numbering: the same order whichever of the
+    // cells at a face holds the point, on any number of ranks
+    std::vector<std::size_t> entries(end - first[p].second);
+    std::iota(entries.begin(), entries.end(), first[p].second);
+    const auto position = [&](const std::size_t e) {
+      return std::array<double, 3>{{value[4 * e + 1], value[4 * e + 2], value[4 * e + 3]}};
+    };
+    std::sort(entries.begin(), entries.end(),
+              [&](const std::size_t a, const std::size_t b) { return position(a) < position(b); });
+    for (const std::size_t e : entries)
+    {
+      auto [it, fresh] = slot_of.emplace(id[4 * e + 1], unsigned(slot_of.size()));
+      if (fresh)
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+          r.slot_dofs.push_back(id[4 * e + 1 + d]);
+        r.slot_points.emplace_back(value[4 * e + 1], value[4 * e + 2], value[4 * e + 3]);
+      }
+      r.rows[p].emplace_back(it->second, value[4 * e]);
+    }
+  }
+  r.n_slots = slot_of.size();
+  return r;
+}
 } // namespace
 
 void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<dem::Vec3>& points,
@@ -124,8 +193,8 @@ void PointTransfer::reinit(const fem::ExplicitDynamics& fe, const std::vector<de
   locator.reinit(at, fe.get_triangulation(), fe.get_mapping());
   require_points_found(locator, at, comm_, where);
 
-  ShapeRows r = shape_rows(fe, locator, at.size(), n_points_);
-  slot_point_ = std::move(r.slot_points); // a reinit starts afresh
+  const ShapeRows r = shared_rows(shape_rows(fe, locator, at.size(), n_points_), comm_);
+  slot_point_ = r.slot_points; // a reinit starts afresh
   store_rows(r.rows, r.n_slots);
   index_slot_dofs(fe, r.slot_dofs, where);
 }
@@ -161,88 +230,65 @@ void PointTransfer::store_rows(
     }
 }
 
-// Local-form positions of the slot DoFs.
+// Local-form positions of the slot DoFs this rank owns (not_owned for the others'); each slot
+// DoF must have exactly one owner.
 void PointTransfer::index_slot_dofs(const fem::ExplicitDynamics& fe,
                                     const std::vector<dealii::types::global_dof_index>& slot_dofs,
                                     const std::string& where)
 {
-  ghosted_.reinit(fe.owned_dofs(), fe.relevant_dofs(), comm_);
   const IndexSet& owned = fe.owned_dofs();
   const auto first = owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
-  IndexSet ghosts = fe.relevant_dofs(); // the ghosts in PETSc's order (sorted)
-  ghosts.subtract_set(owned);
   slot_local_.clear();
-  for (const auto dof : slot_dofs)
+  std::vector<int> owners(slot_dofs.size(), 0);
+  for (std::size_t k = 0; k < slot_dofs.size(); ++k)
   {
-    if (owned.is_element(dof))
-      slot_local_.push_back(unsigned(dof - first));
-    else if (parallel_ && ghosts.is_element(dof))
-      slot_local_.push_back(unsigned(owned.n_elements() + ghosts.index_within_set(dof)));
-    else
-      throw std::runtime_error(where + ": an interface node is neither owned nor a ghost");
+    const bool mine = owned.is_element(slot_dofs[k]);
+    slot_local_.push_back(mine ? unsigned(slot_dofs[k] - first) : not_owned);
+    owners[k] = mine ? 1 : 0;
   }
+  if (parallel_)
+    MPI_Allreduce(MPI_IN_PLACE, owners.data(), int(owners.size()), MPI_INT, MPI_SUM, comm_);
+  for (const int n : owners)
+    if (n != 1)
+      throw std::runtime_error(where + ": an interface node's DoF has " + std::to_string(n) +
+                               " owning ranks (expected one)");
 }
 
 void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots) const
 {
+  std::vector<double> none;
+  gather(x, slots, none);
+}
+
+void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+                           std::vector<double>& root_values) const
+{
   slots.resize(slot_local_.size());
-  if (parallel_)
-  {
-    ghosted_ = x; // copies the owned part and updates the ghosts
-    fem::LocalArray a(ghosted_);
-    for (std::size_t k = 0; k < slot_local_.size(); ++k)
-      slots[k] = a[slot_local_[k]];
-  }
-  else
   {
     fem::LocalArray a(x);
     for (std::size_t k = 0; k < slot_local_.size(); ++k)
-      slots[k] = a[slot_local_[k]];
+      slots[k] = slot_local_[k] != not_owned ? a[slot_local_[k]] : 0.0;
   }
+  if (!parallel_)
+    return;
+  // one reduction for both: each value has one rank that gives it, the others add zeros
+  // (exact), so every rank ends with the values themselves
+  if (Utilities::MPI::this_mpi_process(comm_) != 0)
+    std::fill(root_values.begin(), root_values.end(), 0.0);
+  reduction_.assign(slots.begin(), slots.end());
+  reduction_.insert(reduction_.end(), root_values.begin(), root_values.end());
+  MPI_Allreduce(MPI_IN_PLACE, reduction_.data(), int(reduction_.size()), MPI_DOUBLE, MPI_SUM,
+                comm_);
+  std::copy(reduction_.begin(), reduction_.begin() + long(slots.size()), slots.begin());
+  std::copy(reduction_.begin() + long(slots.size()), reduction_.end(), root_values.begin());
 }
 
 void PointTransfer::scatter_add(const std::vector<double>& slots, fem::LA::MPI::Vector& f) const
 {
-  if (!parallel_)
-  {
-    fem::LocalArray a(f);
-    for (std::size_t k = 0; k < slot_local_.size(); ++k)
-      a[slot_local_[k]] += slots[k];
-    return;
-  }
-  {
-    fem::LocalArray w(ghosted_);
-    for (std::size_t i = 0; i < w.size(); ++i)
-      w[i] = 0;
-    for (std::size_t k = 0; k < slot_local_.size(); ++k)
-      w[slot_local_[k]] += slots[k];
-  }
-  fem::add_ghosts_to_owners(ghosted_);
-  fem::LocalArray w(ghosted_), a(f);
-  const std::size_t n = fem::LA::MPI::Vector::size_type(f.locally_owned_size());
-  for (std::size_t i = 0; i < n; ++i)
-    a[i] += w[i];
-}
-
-void PointTransfer::assemble(std::vector<double>& slots) const
-{
-  if (!parallel_)
-    return;
-  {
-    fem::LocalArray w(ghosted_);
-    for (std::size_t i = 0; i < w.size(); ++i)
-      w[i] = 0;
-    for (std::size_t k = 0; k < slot_local_.size(); ++k)
-      w[slot_local_[k]] += slots[k];
-  }
-  const Vec v = static_cast<const Vec&>(ghosted_);
-  VecGhostUpdateBegin(v, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateBegin(v, INSERT_VALUES, SCATTER_FORWARD);
-  VecGhostUpdateEnd(v, INSERT_VALUES, SCATTER_FORWARD);
-  fem::LocalArray w(ghosted_);
+  fem::LocalArray a(f);
   for (std::size_t k = 0; k < slot_local_.size(); ++k)
-    slots[k] = w[slot_local_[k]];
+    if (slot_local_[k] != not_owned)
+      a[slot_local_[k]] += slots[k];
 }
 
 void PointTransfer::interpolate(const std::vector<double>& slots, std::vector<double>& points) const
@@ -261,8 +307,6 @@ void PointTransfer::interpolate(const std::vector<double>& slots, std::vector<do
     }
     points[3 * p] = x, points[3 * p + 1] = y, points[3 * p + 2] = z;
   }
-  if (parallel_)
-    MPI_Allreduce(MPI_IN_PLACE, points.data(), int(points.size()), MPI_DOUBLE, MPI_SUM, comm_);
 }
 
 // Slot by slot over G^T's columns: each slot's sum stays in registers (point by point over the

@@ -5,13 +5,16 @@
 //   spreading      (G^T y)_{I,c} = sum_p N_I(xi_p) y_{p,c}   point forces to nodal forces
 // xi_p are the reference coordinates of X_p in the FE cell that holds it, found once at setup:
 // Utilities::MPI::RemotePointEvaluation locates every point in the distributed mesh and gives
-// it one owning rank (a point on a face shared by cells of two ranks goes to one of them). Each
-// rank keeps the rows of its points (cell, DoFs, shape values N_I(xi_p)) as a small sparse
-// matrix over "slots", the nodes its rows touch, and applies it with plain loops; the point
-// values are exchanged with one MPI_Allreduce per interpolation, so every rank holds all point
+// it one owning rank (a point on a face shared by cells of two ranks goes to one of them). The
+// rows (cell, DoFs, shape values N_I(xi_p)) are then shared, so that every rank holds all of
+// them as a small sparse matrix over "slots", the nodes the interface touches (numbered alike
+// on every rank), and applies it with plain loops. Every rank therefore holds all point and slot
 // values (the particle side lives on rank 0; the multiplier solve runs redundantly on every
-// rank). RemotePointEvaluation's own per-call exchange allocates buffers on every call, which a
-// loop that runs every time step must not do; the precomputed rows do not.
+// rank, multipliers.h): gathering the FE nodes' values is one MPI_Allreduce of the slot values,
+// each given by the rank that owns the DoF, and it can carry rank 0's point values along;
+// interpolation and spreading need no communication, and a rank adds forces to the DoFs it owns.
+// RemotePointEvaluation's own per-call exchange allocates buffers on every call, which a loop
+// that runs every time step must not do; the precomputed rows do not.
 #include "dem/core/types.h"
 #include "fem/explicit_dynamics.h"
 #include <string>
@@ -29,23 +32,24 @@ public:
               const std::string& where);
 
   std::size_t n_points() const { return n_points_; }
-  /// Nodes touched by this rank's points; slot vectors hold 3 values per slot.
+  /// Nodes touched by the interface's points; slot vectors hold 3 values per slot.
   std::size_t n_slots() const { return slot_local_.size() / 3; }
 
-  /// Slot values of an owned FE vector (collective: ghost exchange under MPI).
+  /// Slot values of an owned FE vector, on every rank (collective: one MPI_Allreduce).
   void gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots) const;
-  /// f += the slot values, summed over the ranks that share a node (collective).
+  /// The same, with @p root_values (rank 0's; the other ranks' are overwritten) reaching every
+  /// rank in the same reduction.
+  void gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+              std::vector<double>& root_values) const;
+  /// f += the slot values at the DoFs this rank owns (every rank holds all slot values: no
+  /// communication).
   void scatter_add(const std::vector<double>& slots, fem::LA::MPI::Vector& f) const;
-  /// Sums slot values over the ranks that share a node, so each rank holds the assembled
-  /// value (collective; nothing to do on one rank).
-  void assemble(std::vector<double>& slots) const;
-  /// points = G slots, 3 values per point, on every rank (collective).
+  /// points = G slots, 3 values per point (every rank holds all rows: no communication).
   void interpolate(const std::vector<double>& slots, std::vector<double>& points) const;
-  /// slots = G^T points on this rank's rows (not assembled; see assemble()).
+  /// slots = G^T points (all points' rows: the assembled nodal values).
   void spread(const std::vector<double>& points, std::vector<double>& slots) const;
 
-  /// Shape values of the rows: for point p, entries [row_ptr[p], row_ptr[p+1]) of (slot, N);
-  /// empty rows for points owned by other ranks.
+  /// Shape values of the rows: for point p, entries [row_ptr[p], row_ptr[p+1]) of (slot, N).
   const std::vector<unsigned int>& row_pointers() const { return row_ptr_; }
   const std::vector<unsigned int>& row_slots() const { return row_slot_; }
   const std::vector<double>& row_values() const { return row_value_; }
@@ -56,7 +60,7 @@ public:
 
 private:
   /// The steps of reinit (transfer.cc): the rows (slot, N) per point stored by row and by slot;
-  /// each slot DoF's place in a ghosted vector's local form.
+  /// each slot DoF's place in an owned vector's local form.
   void store_rows(const std::vector<std::vector<std::pair<unsigned int, double>>>& rows,
                   std::size_t n_slots);
   void index_slot_dofs(const fem::ExplicitDynamics& fe,
@@ -71,10 +75,10 @@ private:
   /// the rows by slot (spread): entries [col_ptr[s], col_ptr[s+1]) of (point, N)
   std::vector<unsigned int> col_ptr_, col_point_;
   std::vector<double> col_value_;
-  /// per slot and component: the index into this rank's local form of a ghosted FE vector
-  /// (owned entries first, then the ghosts in the order of the ghost IndexSet)
+  /// per slot and component: the index of the DoF in this rank's owned entries, or not_owned
+  static constexpr unsigned int not_owned = ~0u;
   std::vector<unsigned int> slot_local_;
   std::vector<dealii::Point<3>> slot_point_;
-  mutable fem::LA::MPI::Vector ghosted_; ///< work vector with the FE's ghost layout (MPI)
+  mutable std::vector<double> reduction_; ///< gather's buffer (MPI)
 };
 } // namespace dembridge::coupling
