@@ -1,6 +1,7 @@
 #include "distributed/run_explicit.h"
 #include "dem/contacts/contact_forces.h"
 #include "dem/solvers/run_stop.h"
+#include "distributed/distributed_particles.h"
 #include "distributed/distributed_solver.h"
 #include <chrono>
 #include <cmath>
@@ -26,6 +27,8 @@ std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints)
       return "Contacts/monitor: the first contact's record does not run on several MPI ranks "
              "(run it on one rank)";
   }
+  if (std::string joints = smooth_joints_on_ranks(model.bonds); !joints.empty())
+    return joints;
   if (model.groups.size() > 32)
     return "Groups/names: a run on several MPI ranks takes at most 32 groups";
   return {};
