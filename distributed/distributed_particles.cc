@@ -125,6 +125,15 @@ std::uint64_t model_checksum(const dem::Model& m)
 }
 } // namespace
 
+std::string smooth_joints_on_ranks(const dem::BondStore& bonds)
+{
+  if (!bonds.has_smooth_joints())
+    return {};
+  const char* bond_class = bonds.has_plane_joints() ? "weak_plane" : "basal";
+  return std::string("Bond class ") + bond_class +
+         "/smooth joint: not available in a distributed (MPI) run yet; run it on one rank";
+}
+
 DistributedParticles::DistributedParticles(const dem::Model& model, const BackgroundGrid& grid,
                                            MPI_Comm comm)
     : comm_(comm), grid_(grid), tria_(comm)
@@ -212,9 +221,8 @@ DistributedParticles::DistributedParticles(const dem::Model& model, const Backgr
   }
   handler_.update_cached_numbers();
   // the bonds with an owned end, as records
-  if (model.bonds.has_smooth_joints()) // the records carry no bond classes
-    throw dem::InputError("Bond class weak_plane/smooth joint: not available in a distributed "
-                          "(MPI) run yet; run it on one rank");
+  if (const std::string why = smooth_joints_on_ranks(model.bonds); !why.empty())
+    throw dem::InputError(why);
   bonds_.failure = model.bonds.failure;
   bonds_.drop_force_records();
   bond_classes_ = !model.bonds.bond_class.empty();

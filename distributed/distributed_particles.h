@@ -35,6 +35,7 @@
 #include <deal.II/particles/particle_handler.h>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace dembridge::distributed
@@ -44,6 +45,10 @@ namespace dembridge::distributed
 using Reaction = std::array<double, 6>;
 /// The non-zero reactions of a rank's owned particles, by local index (ascending).
 using Reactions = std::vector<std::pair<std::uint32_t, Reaction>>;
+
+/// Why @p bonds cannot be spread over ranks (empty: they can): smooth joints, whose bond
+/// classes the bond records do not carry; the message names the parameter that set them.
+std::string smooth_joints_on_ranks(const dem::BondStore& bonds);
 
 class DistributedParticles
 {

@@ -1,10 +1,12 @@
 #include "distributed/run_explicit.h"
 #include "dem/contacts/contact_forces.h"
 #include "dem/solvers/run_stop.h"
+#include "distributed/distributed_particles.h"
 #include "distributed/distributed_solver.h"
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <tuple>
 #include <type_traits>
 
 namespace dembridge::distributed
@@ -26,6 +28,8 @@ std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints)
       return "Contacts/monitor: the first contact's record does not run on several MPI ranks "
              "(run it on one rank)";
   }
+  if (std::string joints = smooth_joints_on_ranks(model.bonds); !joints.empty())
+    return joints;
   if (model.groups.size() > 32)
     return "Groups/names: a run on several MPI ranks takes at most 32 groups";
   return {};
@@ -139,7 +143,7 @@ void finish_result(dem::RunResult& res, DistributedSolver& solver, const dem::Ru
 
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::RunObserver* observer,
                             dem::RunSchedule sched, MPI_Comm comm, const Resume& resume,
-                            const SnapshotPieces& pieces)
+                            const SnapshotPieces& pieces, RanksReport* ranks)
 {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -239,6 +243,12 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   finish_result(res, solver, progress, first_step, gathered_all, deflection_group, dir);
   if (frequency_group >= 0)
     res.natural_frequency = dem::oscillation_frequency(ft, fu);
+  if (ranks)
+  {
+    const DistributedParticles& own = solver.particles();
+    ranks->n_repartitions = own.n_repartitions();
+    std::tie(ranks->imbalance_max_before, ranks->imbalance_max_after) = own.repartition_imbalance();
+  }
   res.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return res;
 }

@@ -12,8 +12,9 @@
 // state into rank 0's report solver at the same step (run_checkpoint.h), rank 0's observer
 // writes it, and every rank learns whether the write failed (and then throws its error). A
 // checkpoint so written holds the whole run, and resumes on any number of ranks.
-// Not yet on several ranks (unsupported_on_ranks): the contact monitor, more than 32 groups, a
-// checkpoint of a pressure load; the static solver (the caller refuses it).
+// Not yet on several ranks (unsupported_on_ranks): the contact monitor, more than 32 groups,
+// smooth joints (weak-plane or basal), a checkpoint of a pressure load; the static solver (the
+// caller refuses it).
 #include "dem/solvers/run_explicit.h"
 #include "distributed/bond_piece.h"
 #include <deal.II/base/mpi.h>
@@ -37,14 +38,27 @@ using SnapshotPieces =
     std::function<void(const dem::ParticleStore& p, std::size_t n_owned, const dem::BondStore& b,
                        const BondPiece& bonds, double time, long step)>;
 
+/// How the ranks shared the run's particles (the same on every rank): the rebuilds that
+/// repartitioned the mesh and, over them, the largest imbalance (most owned particles / their
+/// mean) that started one and the largest left after one (0, 0 without any;
+/// DistributedParticles::repartition_imbalance). A resumed run's since its resume.
+struct RanksReport
+{
+  long n_repartitions = 0;
+  double imbalance_max_before = 0;
+  double imbalance_max_after = 0;
+};
+
 /// Collective. @p observer: rank 0's (ignored elsewhere); @p schedule: rank 0's is used.
 /// @p pieces (every rank passes one, or none): at each snapshot, before rank 0's observer
 /// writes the rest of it (then the whole state is not gathered at snapshots). On
 /// return rank 0's model holds the final state; the other ranks' model has given up its
-/// particles and bonds (each rank kept only its part after the setup).
+/// particles and bonds (each rank kept only its part after the setup). @p ranks (optional):
+/// how the ranks shared the particles.
 dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,
                             dem::RunObserver* observer, dem::RunSchedule schedule, MPI_Comm comm,
-                            const Resume& resume = {}, const SnapshotPieces& pieces = {});
+                            const Resume& resume = {}, const SnapshotPieces& pieces = {},
+                            RanksReport* ranks = nullptr);
 
 /// Why a model cannot run on several ranks yet (empty: it can); @p checkpoints: with
 /// checkpoints or a resume.

@@ -56,7 +56,7 @@ ExplicitCaseRun run_explicit_case(dem::Model& model, const dem::CaseConfig& conf
     schedule.kill_after_step = std::atol(kill);
   ExplicitCaseRun run;
   run.result = run_explicit_on_ranks(model, config, observer, schedule, checkpoint, dir,
-                                     observer.particle_snapshots());
+                                     observer.particle_snapshots(), j);
   const dem::RunResult& r = run.result;
   observer.finish();
   run.history = observer.load_history();

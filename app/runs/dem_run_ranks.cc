@@ -69,12 +69,20 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
 dem::RunResult run_explicit_on_ranks(dem::Model& model, const dem::CaseConfig& config,
                                      dem::RunObserver& observer, const dem::RunSchedule& schedule,
                                      const CheckpointSettings& checkpoint,
-                                     const std::filesystem::path& dir, ParticleVtuSeries* snapshots)
+                                     const std::filesystem::path& dir, ParticleVtuSeries* snapshots,
+                                     nlohmann::json& summary)
 {
-  if (!on_ranks(checkpoint))
-    return dem::run_explicit(model, config, observer, schedule);
-  return distributed::run_explicit(model, config, &observer, schedule, MPI_COMM_WORLD,
-                                   resume_of(checkpoint),
-                                   pieces_of(model, dir, snapshots != nullptr, snapshots));
+  distributed::RanksReport ranks;
+  dem::RunResult result =
+      on_ranks(checkpoint)
+          ? distributed::run_explicit(
+                model, config, &observer, schedule, MPI_COMM_WORLD, resume_of(checkpoint),
+                pieces_of(model, dir, snapshots != nullptr, snapshots), &ranks)
+          : dem::run_explicit(model, config, observer, schedule);
+  summary["mpi_ranks"] = n_ranks();
+  summary["n_repartitions"] = ranks.n_repartitions;
+  summary["repartition_imbalance_max_before"] = ranks.imbalance_max_before;
+  summary["repartition_imbalance_max_after"] = ranks.imbalance_max_after;
+  return result;
 }
 } // namespace dembridge::app

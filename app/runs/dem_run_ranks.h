@@ -9,6 +9,7 @@
 #include "app/output/particle_vtu.h"
 #include "dem/model/model.h"
 #include "dem/solvers/run_explicit.h"
+#include <nlohmann/json.hpp>
 
 namespace dembridge::app
 {
@@ -26,9 +27,14 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
 /// dem::run_explicit, on as many ranks as the run has (distributed also on one rank when it
 /// resumes a checkpoint written on several). @p snapshots: the observer's ParaView series (null:
 /// none written); on several ranks its particles and bonds are written in pieces into @p dir.
+/// Adds to @p summary, on any number of ranks alike (so that one rank's summary has the keys of
+/// N ranks'): mpi_ranks, n_repartitions (the rebuilds that repartitioned the mesh, since the
+/// resume in a resumed run), repartition_imbalance_max_before and _after (the largest
+/// imbalance, most owned particles over their mean, that started a repartition and that one
+/// left; 0 without any, as on one rank).
 dem::RunResult run_explicit_on_ranks(dem::Model& model, const dem::CaseConfig& config,
                                      dem::RunObserver& observer, const dem::RunSchedule& schedule,
                                      const CheckpointSettings& checkpoint,
-                                     const std::filesystem::path& dir,
-                                     ParticleVtuSeries* snapshots);
+                                     const std::filesystem::path& dir, ParticleVtuSeries* snapshots,
+                                     nlohmann::json& summary);
 } // namespace dembridge::app
