@@ -48,9 +48,16 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
   require_whole_particles_in_cells();
   // n = ceil(L / h - 1/2) (strictly deeper than L), plus the layers ahead
   layers_ = int(std::floor(g.band_width / h - 0.5 + 1e-9)) + 1 + settings_.layers_ahead;
-  margin_ = settings_.fine_margin > 0
-                ? settings_.fine_margin
-                : layers_ + int(std::ceil(settings_.averaging_radius / h - 1e-9));
+  // a coarser cell than the band's reach would straddle the band's inner edge (the band's depth
+  // along a coarse axis is the distance to faces of other orientations only when the faces
+  // normal to it are at least L away)
+  const int band_cells = int(std::ceil(g.band_width / h - 1e-9));
+  if (settings_.fine_margin > 0 && settings_.fine_margin < band_cells)
+    throw std::runtime_error(where + "fine margin: " + std::to_string(settings_.fine_margin) +
+                             " cells is less than the band's depth (" + std::to_string(band_cells) +
+                             " cells of the band element size)");
+  // 0: the whole envelope along an axis with a face (no refinement under load: file comment)
+  margin_ = settings_.fine_margin > 0 ? settings_.fine_margin : std::numeric_limits<int>::max() / 4;
   index_packing();
   find_envelope_lines();
 }

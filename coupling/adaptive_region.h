@@ -3,25 +3,31 @@
 // cells, where its stress approaches the particle model's strength (docs/adaptive.md).
 //
 // Cells. The region's grid is one box grid (coupled_mesh.h) whose cells have the band element
-// size h inside the *envelope* (the box where the region may grow; the FE domain by default) and
-// grow away from it; its lines do not move. The particle region is a set of the envelope's cells (a
-// RegionVolume of their union, handshake.h: its band lies along the faces inside the domain), at
-// the start the cells of the particle box (Particles/origin, box size). The FE grid is a subset of
-// its lines: per axis, inside the envelope, the lines within a fine zone (the m = `fine margin`
-// cells on either side of the region's faces normal to the axis that lie inside the domain, the
-// hull of them, widened outward to the coarse lines; it never narrows) and every k-th line (k =
-// `envelope coarsening`, from the envelope's lower face) elsewhere; outside the envelope all lines
-// (graded as for a fixed region: coarse cells there, next to a support, stiffened the test beam
-// by 0.5 %). A growth only adds lines, so the earlier continuum's Q1 field is exactly a
-// field of the new grid (a trilinear cell cut along its lines stays trilinear): region_growth.cc
-// interpolates it at the new nodes. The default m = n + ceil(R / h) (n the growth's layers, below):
-// a growth from a cell marked at the region's face reaches at most n cells beyond it, and those
-// cells' averages reach R further, so the measure that decides the next growth near the region sees
-// fine cells only. A coarse FE cell passes its strain, at each grid cell's centre it covers, to
-// those grid cells. Utilisation. At each record the continuum's strain eps_c at the centre of each
-// FE cell c gives the utilisation U_c = U(eps_c) (packing_strength.h: the packing's bonds deformed
-// with the continuum against their strengths); its non-local average over the radius R (Bazant &
-// Jirasek 2002, the bell-shaped weight w(r) = (1 - r^2 / R^2)^2, by cell volume V) is
+// size h inside the *envelope* (the box where the region may grow; the FE domain by default)
+// and grow away from it; its lines do not move. The particle region is a set of the envelope's
+// cells (a RegionVolume of their union, handshake.h: its band lies along the faces inside the
+// domain), at the start the cells of the particle box (Particles/origin, box size).
+// FE grid. A subset of the grid's lines: per axis, inside the envelope, the lines within a fine
+// zone and every k-th line (k = `envelope coarsening`, from the envelope's lower face)
+// elsewhere; outside the envelope all lines (graded as for a fixed region: coarse cells there,
+// next to a support, stiffened the test beam by 0.5 %). The fine zone along an axis is empty
+// while the region has no face normal to it inside the domain (a beam's width that it spans);
+// once it has, the envelope's whole extent (`fine margin` = 0), or the hull of m = `fine
+// margin` cells on either side of those faces, widened outward to the coarse lines. It never
+// narrows: a growth only adds lines, so the earlier continuum's Q1 field is exactly a field of
+// the new grid (a trilinear cell cut along its lines stays trilinear), and region_growth.cc
+// interpolates it at the new nodes. Exact, but not in equilibrium on the finer grid (coarse Q1
+// cells are stiffer in bending): refined under load, the continuum rings (the 4 m beam: its
+// load reading +-27 N about 60 N, the first bond broken 20 ms early), hence the default. With
+// m >= n + ceil(R / h) (n the growth's layers, below) a growth from a cell marked at the
+// region's face reaches at most n cells past it, and those cells' averages reach R further, so
+// the measure that decides the next growth near the region sees fine cells only; m must be at
+// least the band's depth in cells (a coarse cell would straddle the band's inner edge). A
+// coarse FE cell gives its strain, at the centre of each grid cell it covers, to those cells.
+// Utilisation. At each record the continuum's strain eps_c at the centre of each FE cell c gives
+// the utilisation U_c = U(eps_c) (packing_strength.h: the packing's bonds deformed with the
+// continuum against their strengths); its non-local average over the radius R (Bazant & Jirasek
+// 2002, the bell-shaped weight w(r) = (1 - r^2 / R^2)^2, by cell volume V) is
 //   Ubar_c = sum_{c'} w(|x_c - x_c'|) V_c' U_c' / sum_{c'} w(|x_c - x_c'|) V_c',
 // over the FE cells c' within R (the particle-only region has no continuum and is left out).
 // Checks: at every record (coupled_run.h), and while bonds break every `crack check interval`

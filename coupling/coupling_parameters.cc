@@ -209,8 +209,9 @@ void declare_adaptive_region(ParameterHandler& prm)
                     "every line.");
   prm.declare_entry("fine margin", "0", Integer(),
                     "Cells of the band element size kept on either side of the region's faces "
-                    "(per axis, the FE grid's fine zone; it widens as the region grows); 0: the "
-                    "layers of a growth plus the averaging radius in cells.");
+                    "per axis (the FE grid's fine zone; it widens as the region grows, and a "
+                    "continuum refined under load rings: docs/adaptive.md); 0: the envelope's "
+                    "whole extent along each axis where the region has a face inside the domain.");
   prm.declare_entry("envelope lower", "", dealii::Patterns::Anything(),
                     "Lower corner x, y, z of the box the region may grow in (m); empty: the FE "
                     "domain. Its cells have the band element size near the region.");
