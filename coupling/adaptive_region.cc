@@ -48,7 +48,104 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
   require_whole_particles_in_cells();
   // n = ceil(L / h - 1/2) (strictly deeper than L), plus the layers ahead
   layers_ = int(std::floor(g.band_width / h - 0.5 + 1e-9)) + 1 + settings_.layers_ahead;
+  // a coarser cell than the band's reach would straddle the band's inner edge (the band's depth
+  // along a coarse axis is the distance to faces of other orientations only when the faces
+  // normal to it are at least L away)
+  const int band_cells = int(std::ceil(g.band_width / h - 1e-9));
+  if (settings_.fine_margin > 0 && settings_.fine_margin < band_cells)
+    throw std::runtime_error(where + "fine margin: " + std::to_string(settings_.fine_margin) +
+                             " cells is less than the band's depth (" + std::to_string(band_cells) +
+                             " cells of the band element size)");
+  // 0: the whole envelope along an axis with a face (no refinement under load: file comment)
+  margin_ = settings_.fine_margin > 0 ? settings_.fine_margin : std::numeric_limits<int>::max() / 4;
   index_packing();
+  find_envelope_lines();
+}
+
+GridLines AdaptiveRegion::envelope_grid(const HandshakeGeometry& g, const Vec3& envelope_lo,
+                                        const Vec3& envelope_hi, const Vec3& element_size,
+                                        const double h, const Vec3& far_element_size,
+                                        const double growth)
+{
+  GridLines planes;
+  for (int d = 0; d < 3; ++d)
+    planes[d] = {envelope_lo[d], envelope_hi[d]};
+  return grid_lines(g.domain_lo,
+                    coupled_mesh_steps(g, planes, element_size, h, far_element_size, growth));
+}
+
+// The grid lines of the envelope's faces.
+void AdaptiveRegion::find_envelope_lines()
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    const auto& l = lines_[d];
+    auto nearest = [&](double x)
+    {
+      int best = 0;
+      for (int i = 1; i < int(l.size()); ++i)
+        if (std::abs(l[i] - x) < std::abs(l[best] - x))
+          best = i;
+      return best;
+    };
+    envelope_first_[d] = nearest(settings_.envelope_lo[d]);
+    envelope_last_[d] = nearest(settings_.envelope_hi[d]);
+  }
+}
+
+void AdaptiveRegion::widen_fine_zone()
+{
+  const int k = std::max(1, settings_.envelope_coarsening);
+  for (int d = 0; d < 3; ++d)
+  {
+    // the region's faces normal to d between a region cell and a grid cell outside it
+    int first = std::numeric_limits<int>::max(), last = std::numeric_limits<int>::min();
+    for (std::size_t c = 0; c < region_.size(); ++c)
+    {
+      if (!region_[c])
+        continue;
+      int at[3] = {int(c % n_[0]), int((c / n_[0]) % n_[1]), int(c / (std::size_t(n_[0]) * n_[1]))};
+      for (const int side : {-1, 1})
+      {
+        int next[3] = {at[0], at[1], at[2]};
+        next[d] += side;
+        if (next[d] < 0 || next[d] >= n_[d] || region_[cell_index(next[0], next[1], next[2])])
+          continue;
+        const int face = at[d] + (side > 0 ? 1 : 0);
+        first = std::min(first, face), last = std::max(last, face);
+      }
+    }
+    if (first > last)
+      continue;
+    const int e0 = envelope_first_[d], e1 = envelope_last_[d];
+    // m cells either side, out to the coarse lines (every k-th from the envelope's lower face)
+    first = e0 + ((std::max(e0, first - margin_) - e0) / k) * k;
+    last = std::min(e1, e0 + ((std::min(e1, last + margin_) - e0 + k - 1) / k) * k);
+    auto& z = fine_zone_;
+    if (z[0][d] > z[1][d])
+      z[0][d] = first, z[1][d] = last;
+    else
+      z[0][d] = std::min(z[0][d], first), z[1][d] = std::max(z[1][d], last);
+  }
+}
+
+GridLines AdaptiveRegion::fe_lines() const
+{
+  const int k = std::max(1, settings_.envelope_coarsening);
+  GridLines fe;
+  for (int d = 0; d < 3; ++d)
+  {
+    const int e0 = envelope_first_[d], e1 = envelope_last_[d];
+    for (int i = 0; i < int(lines_[d].size()); ++i)
+    {
+      const bool outside = i <= e0 || i >= e1;
+      const bool coarse = (i - e0) % k == 0;
+      const bool fine = i >= fine_zone_[0][d] && i <= fine_zone_[1][d];
+      if (outside || coarse || fine)
+        fe[d].push_back(lines_[d][i]);
+    }
+  }
+  return fe;
 }
 
 // The settings' ranges, their defaults from the geometry (averaging radius, envelope), the
@@ -313,32 +410,11 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
     bond_marked_[cell_index(c[0], c[1], c[2])] = 1;
   }
   std::fill(utilisation_.begin(), utilisation_.end(), 0.f);
-  const QMidpoint<3> midpoint;
-  FEValues<3> values(fe.get_mapping(), fe.get_fe(), midpoint, update_gradients);
-  const FEValuesExtractors::Vector u(0);
-  std::vector<SymmetricTensor<2, 3>> strain(1);
-  std::vector<types::global_dof_index> dofs(fe.get_fe().n_dofs_per_cell());
-  const auto& inverse_mass = fe.inverse_lumped_mass();
+  anchored_.assign(continuum_.size(), 0);
+  CoveredValues values;
   for (const auto& cell : fe.get_dof_handler().active_cell_iterators())
-  {
-    if (!cell->is_locally_owned())
-      continue;
-    const Point<3> x = cell->center();
-    const auto at = cell_of(Vec3(x[0], x[1], x[2]));
-    const std::size_t c = cell_index(at[0], at[1], at[2]);
-    values.reinit(cell);
-    values[u].get_function_symmetric_gradients(fe.displacement(), strain);
-    Eigen::Matrix3d eps;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        eps(a, b) = strain[0][a][b];
-    utilisation_[c] = float(utilisation(strength_, eps));
-    continuum_[c] = 1;
-    cell->get_dof_indices(dofs);
-    for (const auto i : dofs)
-      if (!(inverse_mass(i) > 0))
-        anchored_[c] = 1;
-  }
+    if (cell->is_locally_owned())
+      measure_cell(fe, cell, values);
   // the non-local average over the FE cells within R (file comment)
   const double R = settings_.averaging_radius;
   max_utilisation_ = 0;
@@ -376,6 +452,56 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
   largest_utilisation_ = std::max(largest_utilisation_, max_utilisation_);
 }
 
+void AdaptiveRegion::measure_cell(const fem::ExplicitDynamics& fe,
+                                  const DoFHandler<3>::active_cell_iterator& cell,
+                                  CoveredValues& cache)
+{
+  // the grid cells it covers (an axis-aligned box: vertex 0 its lower corner, 7 its upper); in
+  // the envelope they are equal, so that their centres in the unit cell depend on their counts
+  const Point<3> lo = cell->vertex(0), hi = cell->vertex(7);
+  const double inset = 1e-6 * spacing_;
+  const auto first = cell_of(Vec3(lo[0], lo[1], lo[2]) + Vec3::Constant(inset));
+  const auto last = cell_of(Vec3(hi[0], hi[1], hi[2]) - Vec3::Constant(inset));
+  const std::array<int, 3> counts = {
+      {last[0] - first[0] + 1, last[1] - first[1] + 1, last[2] - first[2] + 1}};
+  auto& values = cache[counts];
+  if (!values)
+  {
+    std::vector<Point<3>> centres;
+    for (int k = 0; k < counts[2]; ++k)
+      for (int j = 0; j < counts[1]; ++j)
+        for (int i = 0; i < counts[0]; ++i)
+          centres.emplace_back((i + 0.5) / counts[0], (j + 0.5) / counts[1], (k + 0.5) / counts[2]);
+    const Quadrature<3> at(centres, std::vector<double>(centres.size(), 1.0 / centres.size()));
+    values = std::make_unique<FEValues<3>>(fe.get_mapping(), fe.get_fe(), at, update_gradients);
+  }
+  values->reinit(cell);
+  const unsigned int n = values->n_quadrature_points;
+  std::vector<SymmetricTensor<2, 3>> strain(n);
+  (*values)[FEValuesExtractors::Vector(0)].get_function_symmetric_gradients(fe.displacement(),
+                                                                            strain);
+  std::vector<types::global_dof_index> dofs(fe.get_fe().n_dofs_per_cell());
+  cell->get_dof_indices(dofs);
+  const auto& inverse_mass = fe.inverse_lumped_mass();
+  bool anchored = false;
+  for (const auto i : dofs)
+    anchored = anchored || !(inverse_mass(i) > 0);
+  unsigned int q = 0;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i, ++q)
+      {
+        Eigen::Matrix3d eps;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            eps(a, b) = strain[q][a][b];
+        const std::size_t c = cell_index(i, j, k);
+        utilisation_[c] = float(utilisation(strength_, eps));
+        continuum_[c] = 1;
+        anchored_[c] = anchored_[c] || anchored;
+      }
+}
+
 void AdaptiveRegion::visit_state(dem::StateArchive& a)
 {
   dem::StateGroup group(a, "region");
@@ -399,6 +525,16 @@ void AdaptiveRegion::visit_state(dem::StateArchive& a)
   floats("averaged_utilisation", averaged_);
   a.io("max_utilisation", max_utilisation_);
   a.io("largest_utilisation", largest_utilisation_);
+  std::vector<std::int32_t> zone;
+  for (const auto& end : fine_zone_)
+    zone.insert(zone.end(), end.begin(), end.end());
+  a.io("fine_zone", zone);
+  if (zone.size() != 6)
+    throw dem::InputError(a.where() + "fine_zone: " + std::to_string(zone.size()) +
+                          " numbers, not 6");
+  for (int e = 0; e < 2; ++e)
+    for (int d = 0; d < 3; ++d)
+      fine_zone_[e][d] = zone[3 * e + d];
 }
 
 AdaptiveRegion::Proposal AdaptiveRegion::propose() const

@@ -2,11 +2,28 @@
 // An adaptive particle region: the continuum turns into bonded particles, by whole layers of
 // cells, where its stress approaches the particle model's strength (docs/adaptive.md).
 //
-// Cells. The FE mesh of an adaptive run is one box grid (coupled_mesh.h) whose cells have the
-// band element size h inside the *envelope* (the box where the region may grow; the FE domain by
-// default) and grow away from it; its lines do not move. The particle region is a set of the
-// envelope's cells (a RegionVolume of their union, handshake.h: its band lies along the faces
-// inside the domain), at the start the cells of the particle box (Particles/origin, box size).
+// Cells. The region's grid is one box grid (coupled_mesh.h) whose cells have the band element
+// size h inside the *envelope* (the box where the region may grow; the FE domain by default)
+// and grow away from it; its lines do not move. The particle region is a set of the envelope's
+// cells (a RegionVolume of their union, handshake.h: its band lies along the faces inside the
+// domain), at the start the cells of the particle box (Particles/origin, box size).
+// FE grid. A subset of the grid's lines: per axis, inside the envelope, the lines within a fine
+// zone and every k-th line (k = `envelope coarsening`, from the envelope's lower face)
+// elsewhere; outside the envelope all lines (graded as for a fixed region: coarse cells there,
+// next to a support, stiffened the test beam by 0.5 %). The fine zone along an axis is empty
+// while the region has no face normal to it inside the domain (a beam's width that it spans);
+// once it has, the envelope's whole extent (`fine margin` = 0), or the hull of m = `fine
+// margin` cells on either side of those faces, widened outward to the coarse lines. It never
+// narrows: a growth only adds lines, so the earlier continuum's Q1 field is exactly a field of
+// the new grid (a trilinear cell cut along its lines stays trilinear), and region_growth.cc
+// interpolates it at the new nodes. Exact, but not in equilibrium on the finer grid (coarse Q1
+// cells are stiffer in bending): refined under load, the continuum rings (the 4 m beam: its
+// load reading +-27 N about 60 N, the first bond broken 20 ms early), hence the default. With
+// m >= n + ceil(R / h) (n the growth's layers, below) a growth from a cell marked at the
+// region's face reaches at most n cells past it, and those cells' averages reach R further, so
+// the measure that decides the next growth near the region sees fine cells only; m must be at
+// least the band's depth in cells (a coarse cell would straddle the band's inner edge). A
+// coarse FE cell gives its strain, at the centre of each grid cell it covers, to those cells.
 // Utilisation. At each record the continuum's strain eps_c at the centre of each FE cell c gives
 // the utilisation U_c = U(eps_c) (packing_strength.h: the packing's bonds deformed with the
 // continuum against their strengths); its non-local average over the radius R (Bazant & Jirasek
@@ -40,6 +57,8 @@
 #include "coupling/packing_strength.h"
 #include "coupling/region_volume.h"
 #include "dem/core/state_archive.h"
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_values.h>
 #include <map>
 #include <memory>
 #include <string>
@@ -63,7 +82,9 @@ struct AdaptiveRegionSettings
   /// While bonds break, growth is checked every this many steps (each a record) instead of at
   /// every record: a crack can cross the band between two records.
   long crack_check_interval = 10;
-  bool envelope_given = false;                                 ///< false: the FE domain
+  bool envelope_given = false; ///< false: the FE domain
+  int envelope_coarsening = 4; ///< k: FE lines every k grid lines away from the region, >= 1
+  int fine_margin = 0;         ///< m, grid cells beyond the region's faces; 0: n + ceil(R / h)
   Vec3 envelope_lo = Vec3::Zero(), envelope_hi = Vec3::Zero(); ///< m
 };
 
@@ -151,6 +172,18 @@ public:
   const std::vector<char>& cells() const { return region_; }
   /// The grid's cell faces per axis (cells() indexes the cells between them).
   const GridLines& lines() const { return lines_; }
+  /// The FE grid's lines now (file comment: fine zone and every k-th line).
+  GridLines fe_lines() const;
+  /// Per axis the fine zone's first and last grid line (first > last: none).
+  using Zone = std::array<std::array<int, 3>, 2>;
+  const Zone& fine_zone() const { return fine_zone_; }
+  /// Widens the fine zone to m cells beyond the region's faces (after the region grew).
+  void widen_fine_zone();
+  /// The region's grid: the envelope's cells of size @p h, outside it cells graded as
+  /// coupled_mesh_steps makes them.
+  static GridLines envelope_grid(const HandshakeGeometry& g, const Vec3& envelope_lo,
+                                 const Vec3& envelope_hi, const Vec3& element_size, double h,
+                                 const Vec3& far_element_size, double growth);
   void set_cells(std::vector<char> cells);
   /// Checkpoints: the region's cells and the last measure (a restored region of other cells is
   /// the caller's to rebuild on).
@@ -171,6 +204,12 @@ private:
   double lay_out_cells();
   void require_whole_particles_in_cells() const;
   void index_packing();
+  void find_envelope_lines();
+  /// FE values at the centres of the grid cells an FE cell covers, by their counts per axis.
+  using CoveredValues = std::map<std::array<int, 3>, std::unique_ptr<dealii::FEValues<3>>>;
+  /// U of the grid cells that the FE cell @p cell covers (its strain at their centres).
+  void measure_cell(const fem::ExplicitDynamics& fe,
+                    const dealii::DoFHandler<3>::active_cell_iterator& cell, CoveredValues& cache);
 
   AdaptiveRegionSettings settings_;
   GridLines lines_;
@@ -192,5 +231,8 @@ private:
   double max_utilisation_ = 0;
   double largest_utilisation_ = 0;
   int layers_ = 1; ///< n of the file comment
+  int margin_ = 0; ///< m of the file comment
+  std::array<int, 3> envelope_first_{{0, 0, 0}}, envelope_last_{{0, 0, 0}}; ///< grid lines
+  Zone fine_zone_{{{{1, 1, 1}}, {{0, 0, 0}}}};                              ///< none yet
 };
 } // namespace dembridge::coupling

@@ -89,16 +89,15 @@ GridLines grid_lines(const Vec3& lo, const GridLines& steps)
   return lines;
 }
 
-fem::BoundaryNames
-make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double band_element_size,
-                  parallel::distributed::Triangulation<3>& tria, std::vector<RemovedShare>* removed,
-                  const Vec3& far_element_size, const double growth, const GridLines* fine_planes)
+namespace
+{
+/// The box grid of the cell sizes @p steps with the particle-only cells cut out (file comment).
+fem::BoundaryNames mesh_from_steps(const Handshake& h, const GridLines& steps,
+                                   parallel::distributed::Triangulation<3>& tria,
+                                   std::vector<RemovedShare>* removed)
 {
   const auto& g = h.geometry();
   const double tol = 1e-9 * (g.domain_hi - g.domain_lo).norm();
-  const GridLines steps =
-      coupled_mesh_steps(g, fine_planes ? *fine_planes : h.band_planes(), element_size,
-                         band_element_size, far_element_size, growth);
   Triangulation<3> box;
   GridGenerator::subdivided_hyper_rectangle(
       box, std::vector<std::vector<double>>(steps.begin(), steps.end()),
@@ -161,5 +160,33 @@ make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double ban
   if (!remove.empty())
     names["particle-region"] = {6, 2};
   return names;
+}
+} // namespace
+
+fem::BoundaryNames
+make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double band_element_size,
+                  parallel::distributed::Triangulation<3>& tria, std::vector<RemovedShare>* removed,
+                  const Vec3& far_element_size, const double growth, const GridLines* fine_planes)
+{
+  return mesh_from_steps(
+      h,
+      coupled_mesh_steps(h.geometry(), fine_planes ? *fine_planes : h.band_planes(), element_size,
+                         band_element_size, far_element_size, growth),
+      tria, removed);
+}
+
+fem::BoundaryNames
+make_coupled_mesh(const Handshake& h, const Vec3& element_size, const double band_element_size,
+                  parallel::distributed::Triangulation<3>& tria, std::vector<RemovedShare>* removed,
+                  const Vec3& far_element_size, const double growth, const GivenGridLines* grid)
+{
+  if (!grid)
+    return make_coupled_mesh(h, element_size, band_element_size, tria, removed, far_element_size,
+                             growth, static_cast<const GridLines*>(nullptr));
+  GridLines steps;
+  for (int d = 0; d < 3; ++d)
+    for (std::size_t i = 0; i + 1 < grid->lines[d].size(); ++i)
+      steps[d].push_back(grid->lines[d][i + 1] - grid->lines[d][i]);
+  return mesh_from_steps(h, steps, tria, removed);
 }
 } // namespace dembridge::coupling

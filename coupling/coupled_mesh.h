@@ -39,13 +39,27 @@ GridLines coupled_mesh_steps(const HandshakeGeometry& g, const GridLines& planes
 /// same sums deal.II's subdivided_hyper_rectangle makes).
 GridLines grid_lines(const Vec3& lo, const GridLines& steps);
 
-/// @p fine_planes: pairs of planes per axis between which the cells have the band element size
-/// (an adaptive region's envelope, adaptive_region.h); nullptr: the band's (Handshake::
-/// band_planes).
+/// A box grid's cell faces per axis given outright (ascending): an adaptive run's FE grid,
+/// fine near its region and coarse elsewhere (AdaptiveRegion::fe_lines).
+struct GivenGridLines
+{
+  GridLines lines;
+};
+
+/// @p fine_planes: pairs of planes per axis between which the cells have the band element size;
+/// nullptr: the band's (Handshake::band_planes).
 fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
                                      double band_element_size,
                                      dealii::parallel::distributed::Triangulation<3>& tria,
                                      std::vector<RemovedShare>* removed = nullptr,
                                      const Vec3& far_element_size = Vec3::Zero(),
                                      double growth = 1.2, const GridLines* fine_planes = nullptr);
+/// The same on the grid of the lines @p grid (the sizes are not used then); nullptr: as above
+/// from the band's planes.
+fem::BoundaryNames make_coupled_mesh(const Handshake& h, const Vec3& element_size,
+                                     double band_element_size,
+                                     dealii::parallel::distributed::Triangulation<3>& tria,
+                                     std::vector<RemovedShare>* removed,
+                                     const Vec3& far_element_size, double growth,
+                                     const GivenGridLines* grid);
 } // namespace dembridge::coupling

@@ -293,7 +293,8 @@ private:
 
   // Adaptive region (region_growth.cc).
   std::unique_ptr<AdaptiveRegion> adaptive_;
-  GridLines fine_planes_; ///< the envelope's planes: the FE grid's fine cells lie between them
+  /// The FE grid's lines (AdaptiveRegion::fe_lines: fine near the region, coarser elsewhere).
+  GivenGridLines fine_planes_;
   std::vector<std::int32_t> packing_of_; ///< each particle's index in the envelope's packing
   std::vector<GrowthEvent> growth_events_;
   GrowthCap growth_cap_;

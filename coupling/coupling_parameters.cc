@@ -45,6 +45,18 @@ void parse_adaptive_region(ParameterHandler& prm, AdaptiveRegionSettings& a)
     a.maximum_particles = std::size_t(prm.get_integer("maximum particles"));
     a.layers_ahead = prm.get_integer("layers ahead");
     a.crack_check_interval = prm.get_integer("crack check interval");
+    a.envelope_coarsening = prm.get_integer("envelope coarsening");
+    a.fine_margin = prm.get_integer("fine margin");
+    if (a.envelope_coarsening < 1)
+      throw dem::InputError(
+          "Coupling/Adaptive region/envelope coarsening: " + std::to_string(a.envelope_coarsening) +
+          " is below 1 (the FE grid keeps every k-th line of the envelope's "
+          "cells away from the region; 1: every line)");
+    if (a.fine_margin < 0)
+      throw dem::InputError(
+          "Coupling/Adaptive region/fine margin: " + std::to_string(a.fine_margin) +
+          " is negative (cells kept fine beyond the region's faces; 0: the "
+          "growth's layers and the averaging radius)");
     const std::string lo = prm.get("envelope lower"), hi = prm.get("envelope upper");
     if (lo.empty() != hi.empty())
       throw dem::InputError("Coupling/Adaptive region/envelope " +
@@ -191,9 +203,18 @@ void declare_adaptive_region(ParameterHandler& prm)
   prm.declare_entry("crack check interval", "10", Integer(0),
                     "While bonds break, growth is checked every this many steps instead of at "
                     "every record (Output/history interval); 0: at every record only.");
+  prm.declare_entry("envelope coarsening", "4", Integer(),
+                    "k >= 1: inside the envelope, away from the region, the FE grid keeps every "
+                    "k-th line of the envelope's cells (cells k times the band element size); 1: "
+                    "every line.");
+  prm.declare_entry("fine margin", "0", Integer(),
+                    "Cells of the band element size kept on either side of the region's faces "
+                    "per axis (the FE grid's fine zone; it widens as the region grows, and a "
+                    "continuum refined under load rings: docs/adaptive.md); 0: the envelope's "
+                    "whole extent along each axis where the region has a face inside the domain.");
   prm.declare_entry("envelope lower", "", dealii::Patterns::Anything(),
                     "Lower corner x, y, z of the box the region may grow in (m); empty: the FE "
-                    "domain. Its cells have the band element size.");
+                    "domain. Its cells have the band element size near the region.");
   prm.declare_entry("envelope upper", "", dealii::Patterns::Anything(),
                     "Upper corner x, y, z of that box (m); empty: the FE domain.");
   prm.leave_subsection();

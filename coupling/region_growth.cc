@@ -9,12 +9,13 @@
 //     1e-3 r inside the cell); their position X + u(X), velocity v(X), orientation the rotation
 //     (a quaternion of the rotation vector), angular velocity the spin. Their bonds are formed in
 //     the reference configuration, so that they carry the continuum's strain at once;
-//  3. both sides are rebuilt on the larger region (the continuum on the same grid, less the
-//     cells that turned particle-only; the band along the new region's faces; the constraint
-//     matrix and the common step anew); the particles and bonds that were there take their
-//     state (positions, velocities, orientations, damage, strengths, broken or not), the
-//     continuum its nodal displacements and velocities (every node of the new mesh was one of
-//     the old: the region only grows), the particle solver the time and the crack log;
+//  3. both sides are rebuilt on the larger region (the continuum on the grid refined where the
+//     fine zone widened, less the cells that turned particle-only; the band along the new
+//     region's faces; the constraint matrix and the common step anew); the particles and bonds
+//     that were there take their state (positions, velocities, orientations, damage, strengths,
+//     broken or not), the continuum its displacements and velocities (the earlier Q1 field,
+//     exactly: the new grid's lines hold the earlier's), the particle solver the time and the
+//     crack log;
 //  4. the tie's gap at the new interface; the energy after, as in 1.
 // Energy bookkeeping: the models' works (damping, loads, supports, fracture, the tie's work on
 // the continuum) up to the record before the event are carried and added to the new models'
@@ -47,24 +48,53 @@ Key node_key(const Point<3>& x, double q)
   return Key{{std::llround(x[0] / q), std::llround(x[1] / q), std::llround(x[2] / q)}};
 }
 
-/// The nodal values of an earlier continuum at its nodes, as a function for interpolation.
+/// An earlier continuum's Q1 field from its nodal values, on its box grid's @p lines: at a point
+/// of a new node, the trilinear interpolation over the earlier cell that holds it (along an axis
+/// where the point lies on an earlier line, that line alone). The new grid's lines hold the
+/// earlier's, so that this is the earlier field itself, and a node that was there keeps its value.
 class NodalField : public Function<3>
 {
 public:
-  NodalField(const std::map<Key, Vec3>& values, double q) : Function<3>(3), values_(values), q_(q)
+  NodalField(const std::map<Key, Vec3>& values, const GridLines& lines, double q)
+      : Function<3>(3), values_(values), lines_(lines), q_(q)
   {
   }
   double value(const Point<3>& x, const unsigned int c) const override
   {
-    const auto it = values_.find(node_key(x, q_));
-    if (it == values_.end())
-      throw std::logic_error("adaptive region: a node of the new continuum was not one of the "
-                             "earlier's");
-    return it->second[c];
+    // per axis the earlier lines around x and their weights
+    std::array<std::array<double, 2>, 3> at{}, weight{};
+    std::array<int, 3> n{};
+    for (int d = 0; d < 3; ++d)
+    {
+      const auto& l = lines_[d];
+      auto above = std::lower_bound(l.begin(), l.end(), x[d] - q_);
+      if (above == l.end())
+        throw std::logic_error("adaptive region: a new node lies outside the earlier grid");
+      if (std::abs(*above - x[d]) <= q_ || above == l.begin())
+      {
+        at[d] = {{*above, 0.0}}, weight[d] = {{1.0, 0.0}}, n[d] = 1;
+        continue;
+      }
+      const double a = *std::prev(above), b = *above, t = (x[d] - a) / (b - a);
+      at[d] = {{a, b}}, weight[d] = {{1 - t, t}}, n[d] = 2;
+    }
+    double sum = 0;
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+        {
+          const auto it = values_.find(node_key(Point<3>(at[0][i], at[1][j], at[2][k]), q_));
+          if (it == values_.end())
+            throw std::logic_error("adaptive region: a new node lies in no cell of the earlier "
+                                   "continuum");
+          sum += weight[0][i] * weight[1][j] * weight[2][k] * it->second[c];
+        }
+    return sum;
   }
 
 private:
   const std::map<Key, Vec3>& values_;
+  const GridLines& lines_;
   double q_;
 };
 
@@ -126,12 +156,9 @@ void CoupledProblem::prepare_adaptive_region()
                              "(a bond keeps its strength whatever the region, as in full DEM)");
   const Vec3 lo = a.envelope_given ? a.envelope_lo : g.domain_lo;
   const Vec3 hi = a.envelope_given ? a.envelope_hi : g.domain_hi;
-  for (int d = 0; d < 3; ++d)
-    fine_planes_[d] = {lo[d], hi[d]};
-  const GridLines lines = grid_lines(
-      g.domain_lo,
-      coupled_mesh_steps(g, fine_planes_, settings_.element_size, settings_.band_element_size,
-                         settings_.far_element_size, settings_.element_growth));
+  const GridLines lines =
+      AdaptiveRegion::envelope_grid(g, lo, hi, settings_.element_size, settings_.band_element_size,
+                                    settings_.far_element_size, settings_.element_growth);
   // the packing over the envelope, once (every rank: the region's cells are every rank's)
   dem::ParticleSource whole = src;
   whole.origin = lo;
@@ -147,6 +174,7 @@ void CoupledProblem::prepare_adaptive_region()
   adaptive_ = std::make_unique<AdaptiveRegion>(a, lines, g, strength, packing.reference_position,
                                                2 * src.radius);
   adaptive_->start_from_box(g.particle_lo, g.particle_hi, "Particles/origin");
+  adaptive_->widen_fine_zone();
   src.origin = lo;
   src.box_size = hi - lo;
   apply_region();
@@ -155,6 +183,7 @@ void CoupledProblem::prepare_adaptive_region()
 void CoupledProblem::apply_region()
 {
   settings_.geometry.region = adaptive_->volume();
+  fine_planes_.lines = adaptive_->fe_lines();
   const AdaptiveRegion* a = adaptive_.get();
   dem_case_.particles.keep = [a](const Vec3& x) { return a->in_region(x); };
 }
@@ -255,6 +284,7 @@ void CoupledProblem::visit_adaptive_state(dem::StateArchive& a)
 {
   dem::StateGroup group(a, "adaptive");
   const std::vector<char> cells_now = adaptive_->cells();
+  const auto zone_now = adaptive_->fine_zone();
   adaptive_->visit_state(a);
   a.io("last_check_step", growth_checks_.last_step);
   a.io("broken_bonds_at_check", growth_checks_.broken_bonds);
@@ -303,7 +333,7 @@ void CoupledProblem::visit_adaptive_state(dem::StateArchive& a)
     e.time_step = v[14], e.wall_seconds = v[15];
     growth_events_.push_back(e);
   }
-  if (adaptive_->cells() == cells_now)
+  if (adaptive_->cells() == cells_now && adaptive_->fine_zone() == zone_now)
     return;
   // the region grew before the checkpoint: both models anew on it (their state is read next)
   solver_.reset();
@@ -320,6 +350,7 @@ struct CoupledProblem::GrowthHandover
   std::map<std::int32_t, std::array<Vec3, 4>> joining; ///< packing index: u, v, rotation, spin
   double key_quantum = 0;                              ///< node positions' rounding, m
   std::map<Key, Vec3> node_u, node_v;                  ///< the earlier continuum's nodes
+  GridLines old_lines;                                 ///< its grid's lines
   dem::Model old;                                      ///< the earlier particle model
   std::vector<std::int32_t> old_packing;               ///< its particles' packing indices
   std::vector<dem::CrackEvent> cracks;                 ///< its solver's crack log
@@ -382,6 +413,7 @@ std::vector<char> CoupledProblem::add_region_cells(const std::vector<char>& cell
   for (std::size_t c = 0; c < grown.size() && c < old_cells.size(); ++c)
     grown[c] = grown[c] || old_cells[c];
   adaptive_->set_cells(grown);
+  adaptive_->widen_fine_zone();
   return old_cells;
 }
 
@@ -431,6 +463,7 @@ void CoupledProblem::hand_over_earlier_models(GrowthHandover& h)
 {
   h.key_quantum = 1e-6 * 2 * dem_case_.particles.radius;
   nodal_values(*fe_, h.key_quantum, h.node_u, h.node_v);
+  h.old_lines = fine_planes_.lines;
   h.old = std::move(model_);
   h.old_packing = packing_of_;
   if (root_)
@@ -567,11 +600,12 @@ void CoupledProblem::check_loaded_groups_kept(const dem::Model& old) const
   }
 }
 
-// 3. the new continuum takes the earlier one's nodal displacements and velocities (every node
-// of the new mesh was one of the old: the region only grows) and its run's state.
+// 3. the new continuum takes the earlier one's displacements and velocities (its grid holds the
+// earlier's lines: a node that was there keeps its values, a new one takes the earlier field's
+// trilinear interpolation, which is that field) and its run's state.
 void CoupledProblem::continue_continuum(GrowthHandover& h)
 {
-  const NodalField U(h.node_u, h.key_quantum), V(h.node_v, h.key_quantum);
+  const NodalField U(h.node_u, h.old_lines, h.key_quantum), V(h.node_v, h.old_lines, h.key_quantum);
   fe_->set_initial_state(U, V);
   fe_->continue_from(*h.old_fe, V);
   h.old_fe.reset();

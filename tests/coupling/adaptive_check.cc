@@ -5,6 +5,7 @@
 //   region_cells             a union of cells as a region volume: volume, containment, depth
 //   growth_uniform_strain    a growth event in a uniformly strained block: the energy jump, the
 //                            new particles carrying the strain, no shock
+//   growth_refines_grid      the same where the growth refines the continuum's coarse grid
 #include "coupling/adaptive_region.h"
 #include "coupling/continuum_tensor.h"
 #include "coupling/coupled_problem.h"
@@ -147,7 +148,16 @@ void check_region_cells(MPI_Comm)
 /// bonded in the reference configuration, so the stored energy must not jump (goal 1 % of the
 /// strain energy), the particles added must carry the energy the continuum gave up, and the
 /// particle-only region must go on carrying the strain.
-void check_growth_uniform_strain(MPI_Comm comm)
+/// A block of n^3 cells of the lattice's spacing, particles in the cells [box_lo, box_hi)^3,
+/// grown to [grown_lo, grown_hi)^3; the FE grid's coarsening and fine margin (adaptive_region.h).
+struct GrowthCase
+{
+  int n = 16, box_lo = 4, box_hi = 12, grown_lo = 3, grown_hi = 13;
+  int coarsening = 4, margin = 0;
+  long relax_steps = 4000;
+};
+
+void growth_uniform_strain(MPI_Comm comm, const GrowthCase& gc)
 {
   const double d = spacing;
   const double density = 2500;
@@ -156,8 +166,8 @@ void check_growth_uniform_strain(MPI_Comm comm)
   c.particles.radius = radius;
   c.particles.density = density;
   c.particles.scale_density_by_porosity = true;
-  c.particles.origin = Vec3::Constant(4 * d);
-  c.particles.box_size = Vec3::Constant(8 * d);
+  c.particles.origin = Vec3::Constant(gc.box_lo * d);
+  c.particles.box_size = Vec3::Constant((gc.box_hi - gc.box_lo) * d);
   c.bonds.material = material();
   c.damage.law.mode = dem::FailureMode::brittle;
   c.damage.tensile_strength = 1e12; // nothing breaks: the utilisation needs strengths
@@ -167,7 +177,7 @@ void check_growth_uniform_strain(MPI_Comm comm)
   fe.density = density;
   coupling::CouplingSettings s;
   s.geometry.domain_lo = Vec3::Zero();
-  s.geometry.domain_hi = Vec3::Constant(16 * d);
+  s.geometry.domain_hi = Vec3::Constant(gc.n * d);
   s.geometry.particle_lo = c.particles.origin;
   s.geometry.particle_hi = c.particles.origin + c.particles.box_size;
   s.geometry.band_width = 3 * d;
@@ -178,6 +188,8 @@ void check_growth_uniform_strain(MPI_Comm comm)
   s.tensor = coupling::simple_cubic_tensor(k.kn, k.ks, d);
   s.mass_damping = 2 * 3.14159 * std::sqrt(k.kn / d / density) / (16 * d); // ~ critical
   s.adaptive.enabled = true;
+  s.adaptive.envelope_coarsening = gc.coarsening;
+  s.adaptive.fine_margin = gc.margin;
   Eigen::Matrix3d eps;
   eps << 1.0e-4, 0.3e-4, -0.2e-4, 0.3e-4, -0.5e-4, 0.4e-4, -0.2e-4, 0.4e-4, 0.8e-4;
   const auto u = [&](const Vec3& X) { return Vec3(eps * X); };
@@ -189,13 +201,15 @@ void check_growth_uniform_strain(MPI_Comm comm)
   problem.step(true);
   const auto& region = *problem.adaptive_region();
   const std::size_t n0 = problem.n_particles();
-  // one layer of cells on every side: the cube [3 d, 13 d]
   std::vector<char> cells = region.cells();
-  for (std::size_t kk = 0; kk < 16; ++kk)
-    for (std::size_t j = 0; j < 16; ++j)
-      for (std::size_t i = 0; i < 16; ++i)
-        if (i >= 3 && i < 13 && j >= 3 && j < 13 && kk >= 3 && kk < 13)
-          cells[(kk * 16 + j) * 16 + i] = 1;
+  const int n = gc.n;
+  auto grown = [&](int i) { return i >= gc.grown_lo && i < gc.grown_hi; };
+  for (int kk = 0; kk < n; ++kk)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (grown(i) && grown(j) && grown(kk))
+          cells[(std::size_t(kk) * n + j) * n + i] = 1;
+  const auto dofs_before = problem.continuum().get_dof_handler().n_dofs();
   const double dem_strain_before = problem.energies().dem_strain;
   // the two sides' strain energies of the same state, before and after the growth
   auto strain_now = [&]
@@ -207,6 +221,11 @@ void check_growth_uniform_strain(MPI_Comm comm)
   const auto [dem0, fe0] = strain_now();
   const auto e = problem.grow_region(cells);
   const auto [dem1, fe1] = strain_now();
+  const auto dofs_after = problem.continuum().get_dof_handler().n_dofs();
+  std::printf("continuum: %u DoFs before the growth, %u after\n", unsigned(dofs_before),
+              unsigned(dofs_after));
+  if (gc.margin > 0) // the grown region's fine zone reaches past the coarse lines
+    check(dofs_after > dofs_before, "the growth refined the continuum's grid");
   std::printf("the particles' strain energy grew by %.6e J, the continuum's fell by %.6e J "
               "(%.2e apart, relative)\n",
               dem1 - dem0, fe0 - fe1, std::abs((dem1 - dem0) - (fe0 - fe1)) / (dem1 - dem0));
@@ -216,13 +235,15 @@ void check_growth_uniform_strain(MPI_Comm comm)
               "%.9e J -> %.9e J, jump %.3e J = %.2e of the strain energy %.6e J\n",
               e.particles_added, n0, e.n_particles, e.bonds_added, e.cells_added, e.energy_before,
               e.energy_after, e.energy_jump(), e.energy_jump_ratio(), e.strain_energy);
-  check(e.particles_added == 1000 - 512, "the particles of the added layer joined (488)");
+  const auto cube = [](int a) { return std::size_t(a) * a * a; };
+  const std::size_t joined = cube(gc.grown_hi - gc.grown_lo) - cube(gc.box_hi - gc.box_lo);
+  check(e.particles_added == joined, "the particles of the added layers joined");
   check(e.energy_jump_ratio() < 0.01, "the energy jump within 1 % of the strain energy");
   // relax: the particle-only region carries the strain, nothing rings
   double largest_kinetic = 0;
-  for (long n = 1; n <= 4000; ++n)
+  for (long step = 1; step <= gc.relax_steps; ++step)
   {
-    const bool record = n % 50 == 0;
+    const bool record = step % 50 == 0;
     problem.step(record);
     if (!record)
       continue;
@@ -231,9 +252,10 @@ void check_growth_uniform_strain(MPI_Comm comm)
                                (en.dem_kinetic + en.fe_kinetic) / (en.dem_strain + en.fe_strain));
   }
   const auto& en = problem.energies();
-  std::printf("after 4000 steps: particles' strain energy %.6e J (%.6e J before the growth), "
+  std::printf("after %ld steps: particles' strain energy %.6e J (%.6e J before the growth), "
               "continuum %.6e J; largest kinetic share %.2e; balance error %.2e\n",
-              en.dem_strain, dem_strain_before, en.fe_strain, largest_kinetic, en.balance_error());
+              gc.relax_steps, en.dem_strain, dem_strain_before, en.fe_strain, largest_kinetic,
+              en.balance_error());
   const auto& h = problem.handshake();
   const auto fit = coupling::fit_particle_strain(problem.model().particles, [&](const Vec3& X)
                                                  { return h.in_particle_only(X); });
@@ -247,6 +269,19 @@ void check_growth_uniform_strain(MPI_Comm comm)
   check(largest_kinetic < 1e-3, "no shock: the kinetic energy stays below 1e-3 of the strain "
                                 "energy after the growth");
 }
+
+void check_growth_uniform_strain(MPI_Comm comm)
+{
+  growth_uniform_strain(comm, GrowthCase{});
+}
+
+/// The growth refines the continuum's grid: a 24-cell block, every 4th line away from the region
+/// (k = 4), 3 cells fine beyond its faces; the region grows by 3 layers, so that its fine zone
+/// takes in the coarse cells at the block's faces (new nodes at 1/4, 1/2, 3/4 of them).
+void check_growth_refines_grid(MPI_Comm comm)
+{
+  growth_uniform_strain(comm, GrowthCase{24, 8, 16, 5, 19, 4, 3, 2000});
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -255,13 +290,14 @@ int main(int argc, char** argv)
   if (argc < 2)
   {
     std::cerr << "usage: adaptive_check utilisation_closed_form|region_cells|"
-                 "growth_uniform_strain\n";
+                 "growth_uniform_strain|growth_refines_grid\n";
     return 2;
   }
   const std::map<std::string, std::function<void(MPI_Comm)>> checks = {
       {"utilisation_closed_form", check_utilisation_closed_form},
       {"region_cells", check_region_cells},
-      {"growth_uniform_strain", check_growth_uniform_strain}};
+      {"growth_uniform_strain", check_growth_uniform_strain},
+      {"growth_refines_grid", check_growth_refines_grid}};
   try
   {
     const auto it = checks.find(argv[1]);
