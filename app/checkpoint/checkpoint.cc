@@ -398,7 +398,8 @@ void write_checkpoint(const fs::path& file, const CheckpointHeader& header,
     // HDF5's file format 1.8 (and no older): its metadata carries checksums (hdf5_archive.h)
     Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
     H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
-    Handle h(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), H5Fclose);
+    Handle creation(hdf5::compact_links(H5Pcreate(H5P_FILE_CREATE)), H5Pclose);
+    Handle h(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose);
     if (!h.ok())
       throw std::runtime_error(tmp.string() + ": cannot create the checkpoint" +
                                hdf5::with_reason(hdf5::hdf5_reason()));
