@@ -84,4 +84,70 @@ void CoupledProblem::visit_tie(dem::StateArchive& a)
     a.io("first_position", b.first_position);
   }
 }
+
+// The adaptive region's part: its cells and fine zone, the growth checks, the cap, the works
+// carried over earlier growths and the events; a region that grew before the checkpoint
+// rebuilds both models on it before their state is read.
+void CoupledProblem::visit_adaptive_state(dem::StateArchive& a)
+{
+  dem::StateGroup group(a, "adaptive");
+  const std::vector<char> cells_now = adaptive_->cells();
+  const auto zone_now = adaptive_->fine_zone();
+  adaptive_->visit_state(a);
+  a.io("last_check_step", growth_checks_.last_step);
+  a.io("broken_bonds_at_check", growth_checks_.broken_bonds);
+  a.io("planned_steps", growth_checks_.planned_steps);
+  a.io("cap_reached", growth_cap_.reached);
+  a.io("cap_time", growth_cap_.time);
+  a.io("cap_particles", growth_cap_.particles);
+  {
+    dem::StateGroup works(a, "carried_work");
+    a.io("dem_damping", carried_.dem_damping);
+    a.io("dem_external", carried_.dem_external);
+    a.io("dem_other", carried_.dem_other);
+    a.io("fe_damping", carried_.fe_damping);
+    a.io("fe_boundary_work", carried_.fe_boundary_work);
+    a.io("multiplier_work_fe", carried_.multiplier_work_fe);
+  }
+  // the events, 16 numbers each
+  constexpr std::size_t fields = 16;
+  std::vector<double> events;
+  for (const auto& e : growth_events_)
+    events.insert(events.end(),
+                  {e.time, double(e.step), double(e.cells_added), double(e.region_cells),
+                   double(e.particles_added), double(e.n_particles), double(e.bonds_added),
+                   double(e.n_bonds), double(e.marked_cells), double(e.marked_by_bonds),
+                   e.max_utilisation, e.energy_before, e.energy_after, e.strain_energy, e.time_step,
+                   e.wall_seconds});
+  a.io("events", events);
+  if (!a.loading())
+    return;
+  if (events.size() % fields != 0)
+    throw dem::InputError(a.where() + "events: " + std::to_string(events.size()) +
+                          " numbers, not a whole number of events");
+  growth_events_.clear();
+  for (std::size_t k = 0; k < events.size(); k += fields)
+  {
+    const double* v = events.data() + k;
+    GrowthEvent e;
+    e.time = v[0];
+    e.step = long(v[1]);
+    e.cells_added = std::size_t(v[2]), e.region_cells = std::size_t(v[3]);
+    e.particles_added = std::size_t(v[4]), e.n_particles = std::size_t(v[5]);
+    e.bonds_added = std::size_t(v[6]), e.n_bonds = std::size_t(v[7]);
+    e.marked_cells = std::size_t(v[8]), e.marked_by_bonds = std::size_t(v[9]);
+    e.max_utilisation = v[10];
+    e.energy_before = v[11], e.energy_after = v[12], e.strain_energy = v[13];
+    e.time_step = v[14], e.wall_seconds = v[15];
+    growth_events_.push_back(e);
+  }
+  if (adaptive_->cells() == cells_now && adaptive_->fine_zone() == zone_now)
+    return;
+  // the region grew before the checkpoint: both models anew on it (their state is read next)
+  solver_.reset();
+  auto old_fe = std::move(fe_);
+  auto old_handshake = std::move(handshake_);
+  apply_region();
+  build(nullptr);
+}
 } // namespace dembridge::coupling
