@@ -22,6 +22,9 @@ from paraview.simple import PVDReader, UpdatePipeline
 from vtk import vtkXMLUnstructuredGridReader
 from vtk.util.numpy_support import vtk_to_numpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvtu_series import merged, series  # noqa: E402
+
 one_dir, many_dir = sys.argv[1], sys.argv[2]
 n_ranks = [int(n) for n in sys.argv[3].split(",")]
 min_broken_across = int(sys.argv[sys.argv.index("--min-broken-across") + 1]) \
@@ -29,22 +32,6 @@ min_broken_across = int(sys.argv[sys.argv.index("--min-broken-across") + 1]) \
 tolerance = 1e-10
 BROKEN = 2
 failures = []
-
-
-def series(directory, name):
-    return [(float(d.get("timestep")), d.get("file"))
-            for d in ET.parse(os.path.join(directory, name)).getroot().iter("DataSet")]
-
-
-def merged(data):
-    if data.IsA("vtkMultiBlockDataSet"):  # a reader may hand the pieces over as blocks
-        from vtk import vtkAppendFilter
-        append = vtkAppendFilter()
-        for b in range(data.GetNumberOfBlocks()):
-            append.AddInputData(data.GetBlock(b))
-        append.Update()
-        data = append.GetOutput()
-    return data
 
 
 def bonds(reader, time):

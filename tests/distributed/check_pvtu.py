@@ -16,27 +16,18 @@ from paraview import servermanager
 from paraview.simple import PVDReader, UpdatePipeline
 from vtk.util.numpy_support import vtk_to_numpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvtu_series import merged, series  # noqa: E402
+
 one_dir, many_dir = sys.argv[1], sys.argv[2]
 n_ranks = [int(n) for n in sys.argv[3].split(",")]
 tolerance = 1e-10
 failures = []
 
 
-def series(directory):
-    return [(float(d.get("timestep")), d.get("file"))
-            for d in ET.parse(os.path.join(directory, "particles.pvd")).getroot().iter("DataSet")]
-
-
 def arrays(reader, time):
     UpdatePipeline(time=time, proxy=reader)
-    data = servermanager.Fetch(reader)
-    if data.IsA("vtkMultiBlockDataSet"):  # a reader may hand the pieces over as blocks
-        from vtk import vtkAppendFilter
-        append = vtkAppendFilter()
-        for b in range(data.GetNumberOfBlocks()):
-            append.AddInputData(data.GetBlock(b))
-        append.Update()
-        data = append.GetOutput()
+    data = merged(servermanager.Fetch(reader))
     out = {"points": vtk_to_numpy(data.GetPoints().GetData())}
     pd = data.GetPointData()
     for k in range(pd.GetNumberOfArrays()):
@@ -44,7 +35,7 @@ def arrays(reader, time):
     return out
 
 
-one, many = series(one_dir), series(many_dir)
+one, many = series(one_dir, "particles.pvd"), series(many_dir, "particles.pvd")
 if len(one) != len(many) or len(one) < 2:
     failures.append("snapshots: %d on one rank, %d on %d" % (len(one), len(many), n_ranks))
 one_reader = PVDReader(FileName=os.path.join(one_dir, "particles.pvd"))
