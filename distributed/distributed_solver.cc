@@ -62,6 +62,13 @@ DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSetting
 {
   for (const auto& g : model.groups)
     group_sizes_.push_back(g.members.size());
+  for (const auto& l : model.loads)
+    if (l.kind == dem::LoadKind::pressure && l.ratio_load >= 0 &&
+        std::find(followed_loads_.begin(), followed_loads_.end(), l.ratio_load) ==
+            followed_loads_.end())
+      followed_loads_.push_back(l.ratio_load);
+  followed_reactions_.assign(followed_loads_.size(), std::numeric_limits<double>::quiet_NaN());
+  followed_buffer_.resize(followed_loads_.size() * n_ranks_);
   if (report_contacts_)
   {
     contacts_ = std::make_unique<dem::ContactForces>(*report_contacts_);
@@ -142,6 +149,26 @@ void DistributedSolver::continue_restored_run()
   const auto& ids = particles_.global_ids();
   for (std::size_t i = 0; i < particles_.n_owned(); ++i)
     local_->set_support_reaction(i, report_->support_reaction(std::size_t(ids[i])));
+  share_group_reactions(); // the restored reactions' sums, which the next step's pressure reads
+}
+
+void DistributedSolver::share_group_reactions()
+{
+  if (followed_loads_.empty())
+    return;
+  std::vector<double> mine(followed_loads_.size());
+  for (std::size_t f = 0; f < mine.size(); ++f)
+    mine[f] = local_->own_group_reaction(followed_loads_[f]);
+  MPI_Allgather(mine.data(), int(mine.size()), MPI_DOUBLE, followed_buffer_.data(),
+                int(mine.size()), MPI_DOUBLE, comm_);
+  for (std::size_t f = 0; f < mine.size(); ++f)
+  {
+    double sum = 0; // in rank order, as the energies
+    for (unsigned r = 0; r < n_ranks_; ++r)
+      sum += followed_buffer_[r * mine.size() + f];
+    followed_reactions_[f] = sum;
+    local_->set_group_reaction(followed_loads_[f], sum);
+  }
 }
 
 void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& state)
@@ -169,6 +196,9 @@ void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& s
   local_->set_running_state(std::move(state));
   for (const auto& [i, r] : particles_.reactions())
     local_->set_support_reaction(i, r);
+  for (std::size_t f = 0; f < followed_loads_.size(); ++f)
+    if (!std::isnan(followed_reactions_[f])) // (a migration: the sums of the step before it)
+      local_->set_group_reaction(followed_loads_[f], followed_reactions_[f]);
   if (contacts_)
   {
     contacts_->distribute(owned, particles_.global_ids(), contact_history_);
@@ -200,6 +230,7 @@ void DistributedSolver::step(bool record)
   auto t0 = clock::now();
   const double step_time = local_->time();
   local_->step(record);
+  share_group_reactions();
   timings_.local_step += since(t0);
   t0 = clock::now();
   particles_.update_ghosts();
@@ -451,6 +482,8 @@ void DistributedSolver::gather(bool all)
   state.energy = energy_, state.max_speed = max_speed_, state.unbalanced = unbalanced_;
   state.unbalanced_ratio = unbalanced_ratio_;
   state.broken_by_mode = broken_by_mode_;
+  for (std::size_t k = 0; k < state.applied_pressure.size(); ++k) // the same on every rank
+    state.applied_pressure[k] = local_->applied_pressure(k);
   dem::BondStore& whole_bonds = model_.bonds;
   for (const auto& e : arrived)
   {

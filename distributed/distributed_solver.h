@@ -96,6 +96,9 @@ private:
   void gather_bond_states(bool every_bond);
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
   void migrate();
+  /// Collective: the support reaction of each load a pressure follows (its ratio load) summed
+  /// over the ranks in rank order, into the local solver: each rank holds only its members.
+  void share_group_reactions();
   /// Collective: rank 0's model's contacts take the figures of the step at @p time summed over
   /// the ranks.
   void reduce_contacts(double time);
@@ -128,6 +131,9 @@ private:
   std::array<long, 2> broken_by_mode_{};
   std::size_t cracks_gathered_ = 0; ///< of the local crack log
   std::vector<double> reduce_buffer_;
+  /// the loads a pressure's ratio follows, and their reactions over the ranks (NaN: none yet)
+  std::vector<int> followed_loads_;
+  std::vector<double> followed_reactions_, followed_buffer_;
   Timings timings_;
   /// rank 0: the model's bond index of each pair of global ids, and user id -> global id
   std::unordered_map<std::uint64_t, std::size_t> bond_index_;

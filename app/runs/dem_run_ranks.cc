@@ -55,9 +55,7 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
     solve_static_on_other_rank(model, config);
     return true;
   }
-  if (const std::string why =
-          distributed::unsupported_on_ranks(model, checkpoint.enabled() || checkpoint.resume);
-      !why.empty())
+  if (const std::string why = distributed::unsupported_on_ranks(model); !why.empty())
     throw dem::InputError(why);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     return false;

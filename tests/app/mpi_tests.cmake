@@ -34,12 +34,6 @@ if(MPIEXEC_EXECUTABLE)
     ${MPIEXEC_EXECUTABLE} ${EX}/cantilever.prm ${OUT}/mpi_np2_resume_dem --ranks 1:2
     --kill-after-step 3000 --kept .partial/history.csv.part
     --set "Output/checkpoint interval=0.001" TIMEOUT 120 PROCESSORS 2 MPI_ENV)
-  # the pressure of a pressure load's last step is the solver's state, not gathered from the
-  # ranks: its checkpoints are refused on several ranks (columnar_biaxial.prm cut down as in
-  # checkpoint_resume_pressure)
-  mpi_error_test(checkpoint_dem_pressure 2 "^dembridge: error: columnar_biaxial.prm: Load confine/type: a pressure load is not checkpointed on several MPI ranks yet"
-                 run ${EX}/columnar_biaxial.prm --set "Particles/box size=0.04, 0.04, 0.03"
-                 --set "Output/checkpoint interval=0.001")
   mpi_error_test(verify 2 "^dembridge: error: verify runs on one MPI rank \\(the FE model is small\\), this job has 2"
                  verify ${EX}/compression_cubic.prm --youngs-modulus 3e9 --poisson-ratio 0.2)
   mpi_error_test(elasticity 2 "^dembridge: error: elasticity runs on one MPI rank"
