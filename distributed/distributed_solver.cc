@@ -51,14 +51,14 @@ constexpr std::size_t bond_state_doubles = 8;
 
 DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSettings& settings,
                                      MPI_Comm comm, const BackgroundGrid* grid,
-                                     const Restore& restore, bool resume)
+                                     const Restore& restore, bool resume, bool one_rank_contacts)
     : model_(model), comm_(comm), root_(dealii::Utilities::MPI::this_mpi_process(comm) == 0),
       n_ranks_(dealii::Utilities::MPI::n_mpi_processes(comm)), settings_(settings),
       report_(root_ || resume ? std::make_unique<dem::ExplicitSolver>(
                                     model.particles, model.bonds, model.groups, model.constraints,
                                     model.loads, settings)
                               : nullptr),
-      particles_(model, restore_whole(grid, restore, resume), comm)
+      particles_(model, restore_whole(grid, restore, resume, one_rank_contacts), comm)
 {
   for (const auto& g : model.groups)
     group_sizes_.push_back(g.members.size());
@@ -103,15 +103,18 @@ DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSetting
 }
 
 BackgroundGrid DistributedSolver::restore_whole(const BackgroundGrid* grid, const Restore& restore,
-                                                bool resume)
+                                                bool resume, bool one_rank_contacts)
 {
   for (const auto& c : model_.contributions)
     if (auto* found = dynamic_cast<dem::ContactForces*>(c.get()))
       report_contacts_ = found;
   if (report_ && report_contacts_)
   {
-    contact_checkpoint_ = std::make_unique<ContactCheckpoint>(*report_contacts_);
+    contact_checkpoint_ =
+        std::make_unique<ContactCheckpoint>(*report_contacts_, resume && one_rank_contacts);
     report_->add_contribution(contact_checkpoint_.get());
+    if (resume && one_rank_contacts) // read as that run's contacts were: over the whole model
+      report_contacts_->attach(model_.particles, model_.bonds);
   }
   resumed_ = resume;
   // every rank learns whether one could not restore (a damaged checkpoint, say): all stop with

@@ -40,7 +40,7 @@ public:
   /// each from its part of the restored model, rank 0 with the running sums.
   DistributedSolver(dem::Model& model, const dem::SolverSettings& settings, MPI_Comm comm,
                     const BackgroundGrid* grid = nullptr, const Restore& restore = {},
-                    bool resume = false);
+                    bool resume = false, bool one_rank_contacts = false);
 
   /// One step on every rank (collective): the local step, the ghosts' refresh, a migration
   /// when due (or a throw on every rank when some rank became unstable); on record steps the
@@ -89,7 +89,8 @@ public:
 private:
   /// The initializer's step between the report solver and the particles: attaches the contacts'
   /// checkpoint to the report solver, restores (restore), and gives the background mesh.
-  BackgroundGrid restore_whole(const BackgroundGrid* grid, const Restore& restore, bool resume);
+  BackgroundGrid restore_whole(const BackgroundGrid* grid, const Restore& restore, bool resume,
+                               bool one_rank_contacts);
   /// A resumed run's local solver, its support reactions and the figures of the checkpoint.
   void continue_restored_run();
   /// Collective: the gathered bond states into rank 0's model; @p every_bond: intact ones too.

@@ -164,7 +164,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   };
   DistributedSolver solver(
       model, {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping}, comm,
-      nullptr, restore, resume.resume);
+      nullptr, restore, resume.resume, resume.one_rank_contacts);
   const long first_step = solver.steps();
   if (!root) // each rank keeps its part; rank 0 keeps the whole model for the outputs
     model.particles = {}, model.bonds = {};

@@ -28,6 +28,8 @@ struct Resume
   bool resume = false;
   /// Calls the visit with the checkpoint's archive.
   std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
+  /// The checkpoint was written by a run on one rank: its contacts are in one store's layout.
+  bool one_rank_contacts = false;
 };
 
 /// Writes a snapshot in pieces, on every rank (collective): the first @p n_owned particles of

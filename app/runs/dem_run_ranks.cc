@@ -23,7 +23,8 @@ bool on_ranks(const CheckpointSettings& checkpoint)
 distributed::Resume resume_of(const CheckpointSettings& checkpoint)
 {
   return {checkpoint.resume,
-          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
+          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); },
+          checkpoint.one_rank_contacts};
 }
 /// On several ranks: every rank writes its particles' and its bonds' pieces of each snapshot
 /// (ParticlePieces).
