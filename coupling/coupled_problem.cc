@@ -70,6 +70,8 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
   {
     refresh_own_interface();
     std::fill(rho_.begin(), rho_.end(), 0.0);
+    if (record)
+      band_forces_on_rank(p);
   }
   // The mass damping -c m v^{n-1/2} acts on every particle in the DEM solver's update (its
   // energy booked there); the trial velocities of the tied particles include it.
@@ -152,6 +154,8 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
       lead_damping_ -= damping_force_[k].dot(v1) * 0.5 * dt;
     }
   }
+  if (record && dist_)
+    band_kappa_on_rank(p);
   if (record) // the tie's actual displacement gap, for the record
   {
     transfer_.gather(fe_->displacement(), slots_);

@@ -65,6 +65,7 @@
 #include "fem/explicit_dynamics.h"
 #include <functional>
 #include <memory>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -274,7 +275,12 @@ private:
   void refresh_own_interface();
   void set_initial_state_on_ranks(const std::function<Vec3(const Vec3&)>& u,
                                   const std::function<Vec3(const Vec3&)>& v);
-  /// The band's damage figures over the ranks (check_band_damage's found).
+  /// The band's damage on the ranks: each rank's band bonds' forces at t_n (a record step's
+  /// tie_forces: the state the bond loop read), their failure index after the update
+  /// (tie_after_update, as rank 0's path reads them after the step), and the figures over the
+  /// ranks (check_band_damage's found).
+  void band_forces_on_rank(const dem::ParticleStore& p);
+  void band_kappa_on_rank(const dem::ParticleStore& p);
   std::vector<double> band_damage_on_ranks();
   /// The particle energies summed over the ranks (refresh_energies' dem).
   std::vector<double> dem_energies_on_ranks();
@@ -319,6 +325,9 @@ private:
   std::vector<int> interface_of_;   ///< interface index of each particle (global id), or -1
   /// (pair key of the global ids of a band bond's ends, its index in blending_.band_bonds)
   std::vector<std::pair<std::uint64_t, int>> band_key_;
+  std::vector<std::pair<int, int>> own_band_; ///< (local bond, band index) booked here
+  std::vector<Vec3> band_force_, band_moment_; ///< theirs at t_n of the record step
+  std::array<double, 5> band_found_{};        ///< largest kappa, first band index, midpoint
   dem::ParticleStore empty_particles_;
   std::size_t n_particles_ = 0;
 

@@ -10,6 +10,7 @@
 // the first band bond to fail by its index in the band, as one rank finds it).
 #include "coupling/coupled_problem.h"
 #include "dem/bonds/bond_stress.h"
+#include "dem/measurements/particle_stress.h"
 #include "distributed/distributed_solver.h"
 #include "distributed/run_explicit.h"
 
@@ -104,6 +105,61 @@ void CoupledProblem::refresh_own_interface()
   // by interface index: the works add up in one rank's order within each rank
   std::sort(own_interface_.begin(), own_interface_.end(),
             [](const auto& x, const auto& y) { return x.second < y.second; });
+  // the band bonds this rank books (end a owned), in the local solver's order
+  own_band_.clear();
+  const dem::BondStore& b = layer.bonds();
+  for (std::size_t k = 0; k < b.size() && !band_key_.empty(); ++k)
+  {
+    if (std::size_t(b.a[k]) >= layer.n_owned())
+      continue;
+    const auto key = pair_key(ids[std::size_t(b.a[k])], ids[std::size_t(b.b[k])]);
+    const auto at = std::lower_bound(band_key_.begin(), band_key_.end(),
+                                     std::pair<std::uint64_t, int>(key, -1));
+    if (at != band_key_.end() && at->first == key)
+      own_band_.emplace_back(int(k), at->second);
+  }
+  band_force_.assign(own_band_.size(), Vec3::Zero());
+  band_moment_.assign(own_band_.size(), Vec3::Zero());
+}
+
+void CoupledProblem::band_forces_on_rank(const dem::ParticleStore& p)
+{
+  if (band_tensile_.empty())
+    return;
+  const dem::BondStore& b = dist_->particles().bonds();
+  for (std::size_t j = 0; j < own_band_.size(); ++j)
+  {
+    const auto f = dem::bond_contact_force(p, b, std::size_t(own_band_[j].first));
+    band_force_[j] = f.force, band_moment_[j] = f.moment;
+  }
+}
+
+void CoupledProblem::band_kappa_on_rank(const dem::ParticleStore& p)
+{
+  band_found_ = {band_damage_.max_failure_index, -1, 0, 0, 0};
+  if (band_tensile_.empty())
+    return;
+  const dem::BondStore& b = dist_->particles().bonds();
+  const auto& law = b.failure;
+  for (std::size_t j = 0; j < own_band_.size(); ++j)
+  {
+    const auto k = std::size_t(own_band_[j].first);
+    const auto n = std::size_t(own_band_[j].second);
+    const double alpha = blending_.band_bond_alpha[n];
+    if (alpha < 1e-9 || b.state[k] == dem::BondState::broken)
+      continue;
+    const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
+    const Vec3 e = chord.normalized(), F = band_force_[j] / alpha, M = band_moment_[j] / alpha;
+    const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
+    const double tau_max = dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
+    const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
+    band_found_[0] = std::max(band_found_[0], kappa);
+    if (kappa >= 1 && !band_damage_.reached && (band_found_[1] < 0 || double(n) < band_found_[1]))
+    {
+      const Vec3 mid = 0.5 * (p.position[b.a[k]] + p.position[b.b[k]]);
+      band_found_ = {band_found_[0], double(n), mid.x(), mid.y(), mid.z()};
+    }
+  }
 }
 
 void CoupledProblem::set_initial_state_on_ranks(const std::function<Vec3(const Vec3&)>& u,
@@ -119,46 +175,15 @@ void CoupledProblem::set_initial_state_on_ranks(const std::function<Vec3(const V
   layer.update_ghosts(); // collective
 }
 
-// check_band_damage's figures: each rank checks the band bonds it books (end a owned), then one
-// gather: the largest index, and of the bonds that passed their strength the first in the
-// band's order (as one rank's loop meets them) with its midpoint.
+// check_band_damage's figures from each rank's (band_kappa_on_rank), one gather: the largest
+// index, and of the bonds that passed their strength the first in the band's order (as one
+// rank's loop meets them) with its midpoint.
 std::vector<double> CoupledProblem::band_damage_on_ranks()
 {
   std::vector<double> found(5, 0.0); // max kappa, reached, time, position
   if (band_tensile_.empty())
     return found;
-  auto& layer = dist_->particles();
-  const dem::ParticleStore& p = layer.particles();
-  const dem::BondStore& b = layer.bonds();
-  const auto& ids = layer.global_ids();
-  const auto& law = b.failure;
-  double mine[5] = {band_damage_.max_failure_index, -1, 0, 0, 0}; // largest, first, midpoint
-  for (std::size_t k = 0; k < b.size(); ++k)
-  {
-    if (std::size_t(b.a[k]) >= layer.n_owned())
-      continue;
-    const auto key = pair_key(ids[std::size_t(b.a[k])], ids[std::size_t(b.b[k])]);
-    const auto at = std::lower_bound(band_key_.begin(), band_key_.end(),
-                                     std::pair<std::uint64_t, int>(key, -1));
-    if (at == band_key_.end() || at->first != key)
-      continue;
-    const int n = at->second;
-    const double alpha = blending_.band_bond_alpha[std::size_t(n)];
-    if (alpha < 1e-9 || b.state[k] == dem::BondState::broken)
-      continue;
-    const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
-    const Vec3 e = chord.normalized(), F = b.force[k] / alpha, M = b.moment[k] / alpha;
-    const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
-    const double tau_max =
-        dem::shear_strength(law, band_shear_[std::size_t(n)], s.normal_force, s.area);
-    const double kappa = std::max(s.tensile / band_tensile_[std::size_t(n)], s.shear / tau_max);
-    mine[0] = std::max(mine[0], kappa);
-    if (kappa >= 1 && !band_damage_.reached && (mine[1] < 0 || n < mine[1]))
-    {
-      const Vec3 mid = 0.5 * (p.position[b.a[k]] + p.position[b.b[k]]);
-      mine[1] = n, mine[2] = mid.x(), mine[3] = mid.y(), mine[4] = mid.z();
-    }
-  }
+  const double* mine = band_found_.data();
   const unsigned n_ranks = Utilities::MPI::n_mpi_processes(comm_);
   std::vector<double> all(5 * n_ranks);
   MPI_Allgather(mine, 5, MPI_DOUBLE, all.data(), 5, MPI_DOUBLE, comm_);
