@@ -404,11 +404,10 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   check_explicit_end_time(c.particles.run.end_time);
   const bool failure_law = c.particles.damage.law.mode != dem::FailureMode::none;
   const OutputSettings out = parse_output_settings(prm);
-  // checkpoints hold the particles as rank 0 steps them (coupled_state.cc)
-  if (out.checkpoint_interval > 0 || out.checkpoint_wall_interval > 0)
-    c.settings.particles_on_rank0 = "Output/checkpoint interval: checkpoints";
-  if (checkpoint.resume)
-    c.settings.particles_on_rank0 = "--resume: a resumed run";
+  // checkpoints hold the particles as rank 0 steps them (coupled_state.cc); a resumed run
+  // reads one
+  if (out.checkpoint_interval > 0 || out.checkpoint_wall_interval > 0 || checkpoint.resume)
+    c.settings.particles_on_rank0 = "Output/checkpoint interval: checkpoints (and --resume)";
   auto problem = coupling::make_coupled_problem(c, comm);
   coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
   if (!checkpoint.file.empty()) // prepare_checkpoint: not an FE run
