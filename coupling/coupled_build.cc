@@ -197,16 +197,16 @@ void CoupledProblem::build_particles(const std::function<void()>& adopt)
 {
   const auto work = [&]
   {
-            model_ = dem::build_model(dem_case_);
-            dt_particles_ = model_.critical.critical(); // the particle region's own
-            if (adaptive_)
-              locate_in_packing();
-            if (adaptive_ && !adaptive_->has_families())
-              measure_bond_families();
-            if (adopt)
-              adopt();
-            interface_ = find_interface_particles(*handshake_, model_.particles);
-            refuse_motion_on_interface();
+    model_ = dem::build_model(dem_case_);
+    dt_particles_ = model_.critical.critical(); // the particle region's own
+    if (adaptive_)
+      locate_in_packing();
+    if (adaptive_ && !adaptive_->has_families())
+      measure_bond_families();
+    if (adopt)
+      adopt();
+    interface_ = find_interface_particles(*handshake_, model_.particles);
+    refuse_motion_on_interface();
   };
   on_root(comm_, work); // a case refused is refused by rank 0, once
   choose_particle_layout();
@@ -287,25 +287,25 @@ std::vector<double> CoupledProblem::band_mass_ratio(const std::vector<RemovedSha
 void CoupledProblem::blend_band(const std::vector<double>& ratio)
 {
   run_on(comm_, on_ranks_ ? Ranks::all : Ranks::root,
-          [&]
-          {
-            std::vector<double> w(interface_.size());
-            for (std::size_t k = 0; k < w.size(); ++k)
-              w[k] = 1.0 - ratio[3 * k];
-            blending_ = blend_particles(*handshake_, interface_, w, model_.particles, model_.bonds);
-            auto& b = model_.bonds;
-            band_damage_.n_band_bonds = blending_.band_bonds.size();
-            band_tensile_.clear();
-            band_shear_.clear();
-            if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
-              for (const std::size_t k : blending_.band_bonds)
-              {
-                band_tensile_.push_back(b.tensile_strength[k]);
-                band_shear_.push_back(b.shear_strength[k]);
-                b.tensile_strength[k] = b.shear_strength[k] =
-                    std::numeric_limits<double>::infinity();
-              }
-          });
+         [&]
+         {
+           std::vector<double> w(interface_.size());
+           for (std::size_t k = 0; k < w.size(); ++k)
+             w[k] = 1.0 - ratio[3 * k];
+           blending_ = blend_particles(*handshake_, interface_, w, model_.particles, model_.bonds);
+           auto& b = model_.bonds;
+           band_damage_.n_band_bonds = blending_.band_bonds.size();
+           band_tensile_.clear();
+           band_shear_.clear();
+           if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
+             for (const std::size_t k : blending_.band_bonds)
+             {
+               band_tensile_.push_back(b.tensile_strength[k]);
+               band_shear_.push_back(b.shear_strength[k]);
+               b.tensile_strength[k] = b.shear_strength[k] =
+                   std::numeric_limits<double>::infinity();
+             }
+         });
 }
 
 // The particle solver (rank 0) on the blended model, the tie its last contribution.

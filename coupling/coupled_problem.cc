@@ -164,8 +164,8 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
     for (const auto& [i, k] : own_interface_)
     {
       const Vec3 up = p.position[i] - p.reference_position[i];
-      gap = std::max(gap,
-                     (Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]) - up).norm());
+      gap =
+          std::max(gap, (Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]) - up).norm());
     }
     max_gap_ = dist_ ? Utilities::MPI::max(gap, comm_) : Utilities::MPI::broadcast(comm_, gap, 0);
   }

@@ -63,10 +63,10 @@
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "fem/explicit_dynamics.h"
-#include <functional>
-#include <memory>
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -111,7 +111,7 @@ struct CouplingSettings
   AdaptiveRegionSettings adaptive;
 };
 
-}
+} // namespace dembridge::coupling
 namespace dembridge::distributed
 {
 class DistributedSolver;
@@ -321,13 +321,13 @@ private:
   /// (index in the particle store, interface index) of the interface particles this rank steps,
   /// by interface index: every one on rank 0's path, the owned ones on the ranks
   std::vector<std::pair<int, int>> own_interface_;
-  long own_at_rebuild_ = -1;        ///< the layer's rebuild count own_interface_ was made at
-  std::vector<int> interface_of_;   ///< interface index of each particle (global id), or -1
+  long own_at_rebuild_ = -1;      ///< the layer's rebuild count own_interface_ was made at
+  std::vector<int> interface_of_; ///< interface index of each particle (global id), or -1
   /// (pair key of the global ids of a band bond's ends, its index in blending_.band_bonds)
   std::vector<std::pair<std::uint64_t, int>> band_key_;
-  std::vector<std::pair<int, int>> own_band_; ///< (local bond, band index) booked here
+  std::vector<std::pair<int, int>> own_band_;  ///< (local bond, band index) booked here
   std::vector<Vec3> band_force_, band_moment_; ///< theirs at t_n of the record step
-  std::array<double, 5> band_found_{};        ///< largest kappa, first band index, midpoint
+  std::array<double, 5> band_found_{};         ///< largest kappa, first band index, midpoint
   dem::ParticleStore empty_particles_;
   std::size_t n_particles_ = 0;
 

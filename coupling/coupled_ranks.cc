@@ -86,8 +86,8 @@ void CoupledProblem::make_distributed_solver()
   interface_of_.assign(model_.particles.size(), -1);
   for (std::size_t k = 0; k < interface_.size(); ++k)
     interface_of_[std::size_t(interface_[k])] = int(k);
-  dist_ = std::make_unique<distributed::DistributedSolver>(model_, particle_solver_settings(),
-                                                           comm_);
+  dist_ =
+      std::make_unique<distributed::DistributedSolver>(model_, particle_solver_settings(), comm_);
   own_at_rebuild_ = -1;
 }
 

@@ -429,7 +429,7 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
     if (p.particle_layout() != "one process")
       std::printf("coupled: the particle region steps on %s%s%s\n",
                   p.particle_layout() == "ranks" ? "the MPI ranks (distributed particle layer)"
-                                                  : "rank 0",
+                                                 : "rank 0",
                   p.particle_layout_reason().empty() ? "" : "; not on the ranks: ",
                   p.particle_layout_reason().c_str());
     std::fflush(stdout);
