@@ -11,6 +11,7 @@
 //   6. the particle solver with the tie as its last contribution.
 #include "coupling/coupled_mesh.h"
 #include "coupling/coupled_problem.h"
+#include "distributed/distributed_solver.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -41,12 +42,23 @@ private:
   const std::function<Vec3(const Vec3&)>& f_;
 };
 
-/// Runs @p work on rank 0 only; an exception there is rethrown on every rank (so that no rank
-/// waits in a collective call for a rank that has given up).
-void on_root(MPI_Comm comm, const std::function<void()>& work)
+/// Which ranks run a piece of the set-up: rank 0 alone, or (the particle region on the
+/// ranks, whose model every rank holds) the others after rank 0, or all of them.
+enum class Ranks
 {
+  root,
+  others,
+  all
+};
+
+/// Runs @p work on @p who; an exception there is rethrown on every rank, the first failing
+/// rank's (so that no rank waits in a collective call for a rank that has given up).
+void run_on(MPI_Comm comm, const Ranks who, const std::function<void()>& work)
+{
+  const unsigned rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned n_ranks = Utilities::MPI::n_mpi_processes(comm);
   std::string message;
-  if (Utilities::MPI::this_mpi_process(comm) == 0)
+  if (who == Ranks::all || (who == Ranks::root) == (rank == 0))
     try
     {
       work();
@@ -57,9 +69,18 @@ void on_root(MPI_Comm comm, const std::function<void()>& work)
       if (message.empty())
         message = "unknown error";
     }
-  message = Utilities::MPI::broadcast(comm, message, 0);
+  if (who == Ranks::root)
+    message = Utilities::MPI::broadcast(comm, message, 0);
+  else if (const unsigned first = Utilities::MPI::min(message.empty() ? n_ranks : rank, comm);
+           first < n_ranks)
+    message = Utilities::MPI::broadcast(comm, message, first);
   if (!message.empty())
     throw std::runtime_error(message);
+}
+
+void on_root(MPI_Comm comm, const std::function<void()>& work)
+{
+  run_on(comm, Ranks::root, work);
 }
 } // namespace
 
@@ -128,8 +149,7 @@ void CoupledProblem::build(const std::function<void()>& adopt)
   blend_band(band_mass_ratio(removed));
   assemble_constraints();
   compute_time_step();
-  if (root_)
-    make_particle_solver();
+  make_particle_solver();
 }
 
 // The continuum: the lattice's tensor, (1 - alpha)-weighted stiffness, w_M-weighted density.
@@ -171,23 +191,27 @@ void CoupledProblem::build_continuum(std::vector<RemovedShare>& removed)
   }
 }
 
-// The particles (rank 0): the model as for a DEM run; the band particles.
+// The particles (rank 0; every rank's when they step on the ranks): the model as for a DEM
+// run; the band particles.
 void CoupledProblem::build_particles(const std::function<void()>& adopt)
 {
-  on_root(comm_,
-          [&]
-          {
-            model_ = dem::build_model(dem_case_);
-            dt_particles_ = model_.critical.critical(); // the particle region's own
-            if (adaptive_)
-              locate_in_packing();
-            if (adaptive_ && !adaptive_->has_families())
-              measure_bond_families();
-            if (adopt)
-              adopt();
-            interface_ = find_interface_particles(*handshake_, model_.particles);
-            refuse_motion_on_interface();
-          });
+  const auto work = [&]
+  {
+    model_ = dem::build_model(dem_case_);
+    dt_particles_ = model_.critical.critical(); // the particle region's own
+    if (adaptive_)
+      locate_in_packing();
+    if (adaptive_ && !adaptive_->has_families())
+      measure_bond_families();
+    if (adopt)
+      adopt();
+    interface_ = find_interface_particles(*handshake_, model_.particles);
+    refuse_motion_on_interface();
+  };
+  on_root(comm_, work); // a case refused is refused by rank 0, once
+  choose_particle_layout();
+  if (on_ranks_) // the same model on every rank (the setup is replicated, as for DEM runs)
+    run_on(comm_, Ranks::others, work);
   n_particles_ = Utilities::MPI::broadcast(comm_, model_.particles.size(), 0);
   dt_particles_ = Utilities::MPI::broadcast(comm_, dt_particles_, 0);
 }
@@ -262,38 +286,52 @@ std::vector<double> CoupledProblem::band_mass_ratio(const std::vector<RemovedSha
 // aside and are held elastic (coupled_problem.h, BandDamage).
 void CoupledProblem::blend_band(const std::vector<double>& ratio)
 {
-  on_root(comm_,
-          [&]
-          {
-            std::vector<double> w(interface_.size());
-            for (std::size_t k = 0; k < w.size(); ++k)
-              w[k] = 1.0 - ratio[3 * k];
-            blending_ = blend_particles(*handshake_, interface_, w, model_.particles, model_.bonds);
-            auto& b = model_.bonds;
-            band_damage_.n_band_bonds = blending_.band_bonds.size();
-            band_tensile_.clear();
-            band_shear_.clear();
-            if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
-              for (const std::size_t k : blending_.band_bonds)
-              {
-                band_tensile_.push_back(b.tensile_strength[k]);
-                band_shear_.push_back(b.shear_strength[k]);
-                b.tensile_strength[k] = b.shear_strength[k] =
-                    std::numeric_limits<double>::infinity();
-              }
-          });
+  run_on(comm_, on_ranks_ ? Ranks::all : Ranks::root,
+         [&]
+         {
+           std::vector<double> w(interface_.size());
+           for (std::size_t k = 0; k < w.size(); ++k)
+             w[k] = 1.0 - ratio[3 * k];
+           blending_ = blend_particles(*handshake_, interface_, w, model_.particles, model_.bonds);
+           auto& b = model_.bonds;
+           band_damage_.n_band_bonds = blending_.band_bonds.size();
+           band_tensile_.clear();
+           band_shear_.clear();
+           if (b.has_failure()) // the band stays elastic: keep its strengths, lift them
+             for (const std::size_t k : blending_.band_bonds)
+             {
+               band_tensile_.push_back(b.tensile_strength[k]);
+               band_shear_.push_back(b.shear_strength[k]);
+               b.tensile_strength[k] = b.shear_strength[k] =
+                   std::numeric_limits<double>::infinity();
+             }
+         });
 }
 
 // The particle solver (rank 0) on the blended model, the tie its last contribution.
-void CoupledProblem::make_particle_solver()
+dem::SolverSettings CoupledProblem::particle_solver_settings() const
 {
   dem::SolverSettings s;
   s.time_step = dt_;
   s.particle_damping = 0;
   s.mass_damping = settings_.mass_damping; // -c m v on every particle (tie_forces)
   s.threads = dem_case_.run.threads;
+  return s;
+}
+
+void CoupledProblem::make_particle_solver()
+{
+  if (on_ranks_)
+  {
+    make_distributed_solver();
+    dist_->add_contribution(tie_.get()); // last: it needs every other force of the step
+    return;
+  }
+  if (!root_)
+    return;
   solver_ = std::make_unique<dem::ExplicitSolver>(model_.particles, model_.bonds, model_.groups,
-                                                  model_.constraints, model_.loads, s);
+                                                  model_.constraints, model_.loads,
+                                                  particle_solver_settings());
   for (const auto& c : model_.contributions)
     solver_->add_contribution(c.get());
   solver_->add_contribution(tie_.get()); // last: it needs every other force of the step
@@ -331,8 +369,13 @@ void CoupledProblem::assemble_constraints()
     v->assign(3 * n, 0.0);
   alpha_p_ = Utilities::MPI::broadcast(comm_, alpha_p_, 0);
   fe_force_.reinit(fe_->owned_dofs(), comm_);
-  if (root_ && settings_.fine_scale_damping > 0)
+  if ((root_ || on_ranks_) && settings_.fine_scale_damping > 0)
     damping_force_.assign(n, Vec3::Zero());
+  own_interface_.clear(); // on the ranks: each rank's own, at its first step
+  own_at_rebuild_ = -1;
+  if (root_ && !on_ranks_)
+    for (std::size_t k = 0; k < n; ++k)
+      own_interface_.emplace_back(interface_[k], int(k));
 }
 
 // dt = safety * min(particle region's own step, FE bound (Gershgorin's or the element
@@ -374,7 +417,7 @@ void CoupledProblem::set_initial_state(const std::function<Vec3(const Vec3&)>& u
 {
   const FieldFunction U(u), V(v);
   fe_->set_initial_state(U, V);
-  if (root_)
+  if (root_ || on_ranks_)
   {
     auto& p = model_.particles;
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -383,6 +426,8 @@ void CoupledProblem::set_initial_state(const std::function<Vec3(const Vec3&)>& u
       p.velocity[i] = v(p.reference_position[i]);
     }
   }
+  if (dist_)
+    set_initial_state_on_ranks(u, v);
   set_tie_gap();
 }
 
@@ -391,7 +436,7 @@ void CoupledProblem::set_tie_gap()
 {
   transfer_.gather(fe_->displacement(), slots_);
   transfer_.interpolate(slots_, points_);
-  if (root_)
+  if (root_ || on_ranks_) // (every rank's model is the whole one then)
     for (std::size_t k = 0; k < transfer_.n_points(); ++k)
     {
       const int i = interface_[k];
@@ -399,7 +444,7 @@ void CoupledProblem::set_tie_gap()
       for (int c = 0; c < 3; ++c)
         gap_[3 * k + c] = points_[3 * k + c] - up[c];
     }
-  if (transfer_.parallel())
+  if (transfer_.parallel() && !on_ranks_)
     MPI_Bcast(gap_.data(), int(gap_.size()), MPI_DOUBLE, 0, comm_);
 }
 } // namespace dembridge::coupling

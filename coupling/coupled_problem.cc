@@ -7,6 +7,7 @@
 #include <deal.II/base/mpi.h>
 
 #include "dem/bonds/bond_stress.h"
+#include "distributed/distributed_solver.h"
 
 #include <algorithm>
 #include <chrono>
@@ -34,7 +35,9 @@ double CoupledProblem::Energies::balance_error() const
 void CoupledProblem::step(bool record)
 {
   record = record || steps_ == 0; // the first step fixes the initial energy (as the DEM solver)
-  if (root_)
+  if (dist_)
+    dist_->step(record); // every rank's local solver calls tie_forces and tie_after_update
+  else if (root_)
     solver_->step(record); // calls tie_forces and tie_after_update
   else
   {
@@ -43,8 +46,11 @@ void CoupledProblem::step(bool record)
   }
   time_ += dt_;
   ++steps_;
-  if (record)
-    refresh_energies(true);
+  if (!record)
+    return;
+  refresh_energies(true);
+  if (dist_) // the groups' particles, the figures and the cracks into rank 0's model
+    dist_->gather(false);
 }
 
 // Steps 2-5 of the file comment: FE forces and trial velocities, damping, the tie forces, the
@@ -60,33 +66,39 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
     transfer_.gather(fe_->velocity(), slots_);
     transfer_.interpolate(slots_, points_);
   }
-  if (root_)
+  if (dist_) // this rank's particles' terms, zeros for the others' (summed in the gather)
   {
-    // The mass damping -c m v^{n-1/2} acts on every particle in the DEM solver's update (its
-    // energy booked there); the trial velocities of the tied particles include it.
-    const double c = settings_.mass_damping;
-    for (std::size_t k = 0; k < n; ++k)
+    refresh_own_interface();
+    std::fill(rho_.begin(), rho_.end(), 0.0);
+    if (record)
+      band_forces_on_rank(p);
+  }
+  // The mass damping -c m v^{n-1/2} acts on every particle in the DEM solver's update (its
+  // energy booked there); the trial velocities of the tied particles include it.
+  const double c = settings_.mass_damping;
+  for (const auto& [i, k] : own_interface_)
+  {
+    if (fine_scale) // the part of the particle velocity the FE field does not carry
     {
-      const int i = interface_[k];
-      if (fine_scale) // the part of the particle velocity the FE field does not carry
-      {
-        const Vec3 fine =
-            p.velocity[i] - Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]);
-        damping_force_[k] = -settings_.fine_scale_damping * (1 - alpha_p_[k]) * p.mass[i] * fine;
-        p.force[i] += damping_force_[k];
-      }
-      const Vec3 v_hat = (1 - c * dt) * p.velocity[i] + (dt / p.mass[i]) * p.force[i];
-      for (int d = 0; d < 3; ++d)
-      {
-        v_before_p_[3 * k + d] = p.velocity[i][d];
-        v_trial_p_[3 * k + d] = v_hat[d];
-        rho_[3 * k + d] = gap_[3 * k + d] / dt - v_hat[d];
-      }
+      const Vec3 fine =
+          p.velocity[i] - Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]);
+      damping_force_[k] = -settings_.fine_scale_damping * (1 - alpha_p_[k]) * p.mass[i] * fine;
+      p.force[i] += damping_force_[k];
+    }
+    const Vec3 v_hat = (1 - c * dt) * p.velocity[i] + (dt / p.mass[i]) * p.force[i];
+    for (int d = 0; d < 3; ++d)
+    {
+      v_before_p_[3 * k + d] = p.velocity[i][d];
+      v_trial_p_[3 * k + d] = v_hat[d];
+      rho_[3 * k + d] = gap_[3 * k + d] / dt - v_hat[d];
     }
   }
-  // rho = G v^_I - v^_p + g^n / dt; rank 0's part reaches the other ranks with the FE values
+  // rho = G v^_I - v^_p + g^n / dt; the particles' part reaches every rank with the FE values
   // (the step's one reduction)
-  transfer_.gather(fe_->trial_velocity(), slots_, rho_);
+  if (dist_)
+    transfer_.gather_summed(fe_->trial_velocity(), slots_, rho_);
+  else
+    transfer_.gather(fe_->trial_velocity(), slots_, rho_);
   transfer_.interpolate(slots_, points_);
   for (std::size_t k = 0; k < 3 * n; ++k)
     rho_[k] += points_[k];
@@ -95,19 +107,17 @@ void CoupledProblem::tie_forces(dem::ParticleStore& p, const double dt, const bo
   // the works summed in locals: members would be stored at every term (the force array could
   // alias them for the compiler), a chain through memory
   double work_q = work_q_particles_, lead_q = 0;
-  if (root_)
-    for (std::size_t k = 0; k < n; ++k)
+  for (const auto& [i, k] : own_interface_)
+  {
+    const Vec3 q(q_[3 * k], q_[3 * k + 1], q_[3 * k + 2]);
+    p.force[i] += q; // the solver's update gives v^_p + dt q / m_p
+    for (int d = 0; d < 3; ++d)
     {
-      const int i = interface_[k];
-      const Vec3 q(q_[3 * k], q_[3 * k + 1], q_[3 * k + 2]);
-      p.force[i] += q; // the solver's update gives v^_p + dt q / m_p
-      for (int d = 0; d < 3; ++d)
-      {
-        const double v1 = v_trial_p_[3 * k + d] + dt * q[d] / p.mass[i];
-        work_q += q[d] * 0.5 * (v_before_p_[3 * k + d] + v1) * dt;
-        lead_q += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
-      }
+      const double v1 = v_trial_p_[3 * k + d] + dt * q[d] / p.mass[i];
+      work_q += q[d] * 0.5 * (v_before_p_[3 * k + d] + v1) * dt;
+      lead_q += q[d] * 0.5 * v1 * dt; // the half-step lead (fem/explicit_dynamics.cc)
     }
+  }
   work_q_particles_ = work_q;
   lead_q_ = lead_q;
   // the FE nodes take -G^T q (= -M y after a factorised solve: no spread)
@@ -133,31 +143,31 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
                                       const bool record)
 {
   const auto start = std::chrono::steady_clock::now();
-  if (root_ && !damping_force_.empty()) // dissipated: -F_d . (v^{n-1/2} + v^{n+1/2}) / 2 dt
+  if (!damping_force_.empty()) // dissipated: -F_d . (v^{n-1/2} + v^{n+1/2}) / 2 dt
   {
     lead_damping_ = 0;
-    for (std::size_t k = 0; k < interface_.size(); ++k)
+    for (const auto& [i, k] : own_interface_)
     {
-      const Vec3& v1 = p.velocity[interface_[k]];
+      const Vec3& v1 = p.velocity[i];
       const Vec3 v0(v_before_p_[3 * k], v_before_p_[3 * k + 1], v_before_p_[3 * k + 2]);
       damping_particles_ -= damping_force_[k].dot(v0 + v1) * 0.5 * dt;
       lead_damping_ -= damping_force_[k].dot(v1) * 0.5 * dt;
     }
   }
+  if (record && dist_)
+    band_kappa_on_rank(p);
   if (record) // the tie's actual displacement gap, for the record
   {
     transfer_.gather(fe_->displacement(), slots_);
     transfer_.interpolate(slots_, points_);
     double gap = 0;
-    if (root_)
-      for (std::size_t k = 0; k < transfer_.n_points(); ++k)
-      {
-        const int i = interface_[k];
-        const Vec3 up = p.position[i] - p.reference_position[i];
-        gap = std::max(gap,
-                       (Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]) - up).norm());
-      }
-    max_gap_ = Utilities::MPI::broadcast(comm_, gap, 0);
+    for (const auto& [i, k] : own_interface_)
+    {
+      const Vec3 up = p.position[i] - p.reference_position[i];
+      gap =
+          std::max(gap, (Vec3(points_[3 * k], points_[3 * k + 1], points_[3 * k + 2]) - up).norm());
+    }
+    max_gap_ = dist_ ? Utilities::MPI::max(gap, comm_) : Utilities::MPI::broadcast(comm_, gap, 0);
   }
   coupling_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -168,7 +178,9 @@ void CoupledProblem::tie_after_update(const dem::ParticleStore& p, const double 
 void CoupledProblem::check_band_damage()
 {
   std::vector<double> found(5, 0.0); // max kappa, reached, time, position
-  if (root_ && !band_tensile_.empty())
+  if (dist_)
+    found = band_damage_on_ranks(); // the same on every rank
+  else if (root_ && !band_tensile_.empty())
   {
     if (adaptive_)
       band_kappa_.assign(blending_.band_bonds.size(), 0.0);
@@ -202,7 +214,7 @@ void CoupledProblem::check_band_damage()
     }
     found[0] = largest;
   }
-  if (transfer_.parallel())
+  if (transfer_.parallel() && !dist_)
     MPI_Bcast(found.data(), int(found.size()), MPI_DOUBLE, 0, comm_);
   band_damage_.max_failure_index = std::max(band_damage_.max_failure_index, found[0]);
   if (found[1] != 0 && !band_damage_.reached)
@@ -225,7 +237,9 @@ void CoupledProblem::refresh_energies(const bool)
 {
   check_band_damage();
   std::vector<double> dem(8, 0.0);
-  if (root_)
+  if (dist_)
+    dem = dem_energies_on_ranks(); // the same on every rank
+  else if (root_)
   {
     const auto& e = solver_->energy();
     dem = {e.kinetic,
@@ -237,7 +251,7 @@ void CoupledProblem::refresh_energies(const bool)
            work_q_particles_ - lead_q_,
            0.0};
   }
-  if (transfer_.parallel())
+  if (transfer_.parallel() && !dist_)
     MPI_Bcast(dem.data(), int(dem.size()), MPI_DOUBLE, 0, comm_);
   const auto& f = fe_->energies();
   energy_.dem_kinetic = dem[0];

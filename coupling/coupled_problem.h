@@ -40,11 +40,20 @@
 //   E_DEM + E_FE + W_damping = E_0 + W_loads(DEM) + W_boundary(FE)
 // is checked with the tie counted as internal (its work not credited).
 //
-// MPI: the continuum is distributed (p4est + PETSc); the particles live on rank 0, whose DEM
-// solver drives the step, while the other ranks run the same FE phases and collectives. Every
-// rank holds the whole interface (transfer.h) and solves for the tie forces redundantly: a step
-// adds one MPI_Allreduce (the FE velocities at the interface nodes with rank 0's particle terms)
-// to the continuum's own ghost exchanges, and each rank adds the tie's forces to its own DoFs.
+// MPI: the continuum is distributed (p4est + PETSc). The particle region steps on the ranks
+// too, on the distributed particle layer (distributed/distributed_solver.h: each rank its own
+// particles and their ghosts, over the layer's own background mesh), with the tie as the last
+// force of every rank's local solver (coupled_ranks.cc). Every rank holds the whole interface
+// (transfer.h) and solves for the tie forces redundantly: a step adds one MPI_Allreduce (the FE
+// velocities at the interface nodes, each from the DoF's owner, with the tie's particle terms,
+// each from the particle's owner: sums of one value and zeros, so every rank has the one-rank
+// numbers bit for bit) to the continuum's and the particles' own exchanges; each rank applies
+// the tie forces to its own particles and DoFs. At a record the energies and the band's damage
+// are reduced over the ranks and the groups' particles gathered into rank 0's model (the whole
+// model, for the outputs; every particle at a snapshot). What the layer cannot do yet
+// (checkpoints, an adaptive region, the contact monitor, smooth joints) keeps the particles on
+// rank 0, whose DEM solver then drives the step while the other ranks run the FE phases and
+// the same collectives (particle_layout() says which).
 #include "coupling/adaptive_region.h"
 #include "coupling/blending.h"
 #include "coupling/continuum_tensor.h"
@@ -54,9 +63,13 @@
 #include "dem/model/model.h"
 #include "dem/solvers/explicit_solver.h"
 #include "fem/explicit_dynamics.h"
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 
 namespace dembridge::coupling
 {
@@ -90,11 +103,21 @@ struct CouplingSettings
   double time_step = 0;          ///< s; 0: automatic
   bool check_time_step = true;   ///< refuse a given step above the estimate
   std::vector<DrivenBoundary> driven;
+  /// Why the particle region is to step on rank 0 under mpirun (the caller's reason, e.g.
+  /// checkpoints); empty: on the ranks wherever the distributed particle layer can run it.
+  std::string particles_on_rank0;
   /// The particle region grows where the continuum nears the particles' strength
   /// (adaptive_region.h; one process).
   AdaptiveRegionSettings adaptive;
 };
 
+} // namespace dembridge::coupling
+namespace dembridge::distributed
+{
+class DistributedSolver;
+}
+namespace dembridge::coupling
+{
 class CoupledProblem
 {
 public:
@@ -141,7 +164,18 @@ public:
   fem::ExplicitDynamics& continuum() { return *fe_; }
   /// The continuum's parameters as the run uses them (supports, measurements).
   const fem::Parameters& fe_parameters() const { return fe_prm_; }
-  const dem::ExplicitSolver* particle_solver() const { return solver_.get(); }
+  /// The particle region's solver: rank 0's (on the ranks: the report solver over rank 0's
+  /// model, which holds the figures summed over the ranks and the crack log at each record);
+  /// null on the other ranks.
+  const dem::ExplicitSolver* particle_solver() const;
+  /// Where the particle region steps: "ranks" (the distributed particle layer), "rank 0" or
+  /// "one process"; why not on the ranks where it could have been (empty otherwise).
+  const std::string& particle_layout() const { return particle_layout_; }
+  const std::string& particle_layout_reason() const { return rank0_reason_; }
+  /// Collective: rank 0's model takes every particle's state and the bonds no longer intact
+  /// (the particle region on the ranks; nothing to do otherwise). The groups' particles and the
+  /// figures are gathered at every record.
+  void gather_particles();
   const PointTransfer& transfer() const { return transfer_; }
   std::size_t n_particles() const { return n_particles_; }
   std::size_t n_interface_particles() const { return transfer_.n_points(); }
@@ -232,6 +266,24 @@ private:
   std::vector<double> band_mass_ratio(const std::vector<RemovedShare>& removed);
   void blend_band(const std::vector<double>& ratio);
   void make_particle_solver();
+  // The particle region on the ranks (coupled_ranks.cc).
+  /// Rank 0 decides, every rank learns: the distributed layer or rank 0.
+  void choose_particle_layout();
+  dem::SolverSettings particle_solver_settings() const;
+  void make_distributed_solver();
+  /// The owned interface particles (local index, interface index), after a rebuild anew.
+  void refresh_own_interface();
+  void set_initial_state_on_ranks(const std::function<Vec3(const Vec3&)>& u,
+                                  const std::function<Vec3(const Vec3&)>& v);
+  /// The band's damage on the ranks: each rank's band bonds' forces at t_n (a record step's
+  /// tie_forces: the state the bond loop read), their failure index after the update
+  /// (tie_after_update, as rank 0's path reads them after the step), and the figures over the
+  /// ranks (check_band_damage's found).
+  void band_forces_on_rank(const dem::ParticleStore& p);
+  void band_kappa_on_rank(const dem::ParticleStore& p);
+  std::vector<double> band_damage_on_ranks();
+  /// The particle energies summed over the ranks (refresh_energies' dem).
+  std::vector<double> dem_energies_on_ranks();
   /// g = G u_I - u_p at the interface from both sides' current displacements.
   void set_tie_gap();
   /// The adaptive region's grid, packing and first cells (adaptive_region.h).
@@ -263,6 +315,19 @@ private:
   MultiplierSolver multipliers_;
   std::unique_ptr<Tie> tie_;
   std::unique_ptr<dem::ExplicitSolver> solver_;
+  std::unique_ptr<distributed::DistributedSolver> dist_; ///< the particle region on the ranks
+  bool on_ranks_ = false;
+  std::string particle_layout_ = "one process", rank0_reason_;
+  /// (index in the particle store, interface index) of the interface particles this rank steps,
+  /// by interface index: every one on rank 0's path, the owned ones on the ranks
+  std::vector<std::pair<int, int>> own_interface_;
+  long own_at_rebuild_ = -1;      ///< the layer's rebuild count own_interface_ was made at
+  std::vector<int> interface_of_; ///< interface index of each particle (global id), or -1
+  /// (pair key of the global ids of a band bond's ends, its index in blending_.band_bonds)
+  std::vector<std::pair<std::uint64_t, int>> band_key_;
+  std::vector<std::pair<int, int>> own_band_;  ///< (local bond, band index) booked here
+  std::vector<Vec3> band_force_, band_moment_; ///< theirs at t_n of the record step
+  std::array<double, 5> band_found_{};         ///< largest kappa, first band index, midpoint
   dem::ParticleStore empty_particles_;
   std::size_t n_particles_ = 0;
 

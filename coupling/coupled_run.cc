@@ -111,7 +111,10 @@ bool CoupledLoop::after_record(const long n, const bool last, const bool snapsho
     grow_if_due(n);
   const bool rest = at_rest();
   if (snapshot || rest)
+  {
+    problem_.gather_particles(); // the particles on the ranks: rank 0's model takes them all
     observer_.on_snapshot(problem_);
+  }
   if (rest)
     return true;
   report_progress(n);

@@ -9,11 +9,14 @@
 // factorisation are rebuilt from the case. On several MPI ranks rank 0 reads and writes the
 // file; the other ranks take its tie state by broadcast (every rank holds the same tie state).
 #include "coupling/coupled_problem.h"
+#include <stdexcept>
 
 namespace dembridge::coupling
 {
 void CoupledProblem::gather_state()
 {
+  if (on_ranks_) // (the caller keeps such runs' particles on rank 0)
+    throw std::logic_error("checkpoints of a coupled run with its particles on the ranks");
   fe_->gather_state();
 }
 

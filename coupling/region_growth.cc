@@ -208,7 +208,8 @@ double CoupledProblem::stored_energy_now(double* strain)
 
 double CoupledProblem::fracture_energy() const
 {
-  return carried_.dem_other + (solver_ ? solver_->energy().fracture : 0.0);
+  const dem::ExplicitSolver* s = particle_solver(); // the report solver on the ranks
+  return carried_.dem_other + (s ? s->energy().fracture : 0.0);
 }
 
 std::optional<GrowthEvent> CoupledProblem::grow_region_if_due()

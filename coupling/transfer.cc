@@ -263,6 +263,18 @@ void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& s
 void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
                            std::vector<double>& root_values) const
 {
+  gather_reduced(x, slots, root_values, true);
+}
+
+void PointTransfer::gather_summed(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+                                  std::vector<double>& point_values) const
+{
+  gather_reduced(x, slots, point_values, false);
+}
+
+void PointTransfer::gather_reduced(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+                                   std::vector<double>& root_values, const bool root_only) const
+{
   slots.resize(slot_local_.size());
   {
     fem::LocalArray a(x);
@@ -273,7 +285,7 @@ void PointTransfer::gather(const fem::LA::MPI::Vector& x, std::vector<double>& s
     return;
   // one reduction for both: each value has one rank that gives it, the others add zeros
   // (exact), so every rank ends with the values themselves
-  if (Utilities::MPI::this_mpi_process(comm_) != 0)
+  if (root_only && Utilities::MPI::this_mpi_process(comm_) != 0)
     std::fill(root_values.begin(), root_values.end(), 0.0);
   reduction_.assign(slots.begin(), slots.end());
   reduction_.insert(reduction_.end(), root_values.begin(), root_values.end());

@@ -41,6 +41,11 @@ public:
   /// rank in the same reduction.
   void gather(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
               std::vector<double>& root_values) const;
+  /// The same, with @p point_values summed over the ranks in the same reduction: each value
+  /// given by one rank (the owner of its particle), zero on the others, so that the sum is the
+  /// value itself, bit for bit, on any number of ranks.
+  void gather_summed(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+                     std::vector<double>& point_values) const;
   /// f += the slot values at the DoFs this rank owns (every rank holds all slot values: no
   /// communication).
   void scatter_add(const std::vector<double>& slots, fem::LA::MPI::Vector& f) const;
@@ -80,5 +85,7 @@ private:
   std::vector<unsigned int> slot_local_;
   std::vector<dealii::Point<3>> slot_point_;
   mutable std::vector<double> reduction_; ///< gather's buffer (MPI)
+  void gather_reduced(const fem::LA::MPI::Vector& x, std::vector<double>& slots,
+                      std::vector<double>& values, bool root_only) const;
 };
 } // namespace dembridge::coupling

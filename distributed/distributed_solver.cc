@@ -207,6 +207,14 @@ void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& s
     contacts_->distribute(owned, particles_.global_ids(), contact_history_);
     local_->add_contribution(contacts_.get());
   }
+  for (auto* c : added_contributions_)
+    local_->add_contribution(c);
+}
+
+void DistributedSolver::add_contribution(dem::StepContribution* contribution)
+{
+  added_contributions_.push_back(contribution);
+  local_->add_contribution(contribution);
 }
 
 void DistributedSolver::migrate()

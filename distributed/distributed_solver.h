@@ -61,6 +61,9 @@ public:
   /// their owners' reference positions, which the per-step exchange does not carry and the
   /// stress of an owned particle reads (its bonds' displacements, particle_stress.h).
   void share_ghost_references();
+  /// A force every local solver takes after the contacts, now and after every rebuild (a
+  /// coupled run's tie): it acts on the rank's store, owned particles first. Not owned here.
+  void add_contribution(dem::StepContribution* contribution);
 
   double time() const { return local_->time(); }
   long steps() const { return local_->steps(); }
@@ -124,6 +127,7 @@ private:
   /// and the contact histories that travel at a migration
   std::unique_ptr<dem::ContactForces> contacts_;
   std::vector<double> contact_history_, contact_figures_, contact_figures_all_;
+  std::vector<dem::StepContribution*> added_contributions_; ///< add_contribution's
   double last_step_time_ = 0; ///< t_n of the last step (its contact figures are at t_n)
   dem::EnergyBalance energy_;
   double max_speed_ = 0, unbalanced_ratio_ = 0;

@@ -404,6 +404,10 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   check_explicit_end_time(c.particles.run.end_time);
   const bool failure_law = c.particles.damage.law.mode != dem::FailureMode::none;
   const OutputSettings out = parse_output_settings(prm);
+  // checkpoints hold the particles as rank 0 steps them (coupled_state.cc); a resumed run
+  // reads one
+  if (out.checkpoint_interval > 0 || out.checkpoint_wall_interval > 0 || checkpoint.resume)
+    c.settings.particles_on_rank0 = "Output/checkpoint interval: checkpoints (and --resume)";
   auto problem = coupling::make_coupled_problem(c, comm);
   coupling::CoupledRunSettings run = parse_coupled_run_settings(prm, c);
   if (!checkpoint.file.empty()) // prepare_checkpoint: not an FE run
@@ -422,6 +426,12 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
                 p.n_particles(), p.n_interface_particles(), p.model().bonds.size(),
                 unsigned(fe.n_cells()), (unsigned long long)fe.n_dofs(), p.time_step(),
                 p.particle_time_step(), p.fe_time_step());
+    if (p.particle_layout() != "one process")
+      std::printf("coupled: the particle region steps on %s%s%s\n",
+                  p.particle_layout() == "ranks" ? "the MPI ranks (distributed particle layer)"
+                                                 : "rank 0",
+                  p.particle_layout_reason().empty() ? "" : "; not on the ranks: ",
+                  p.particle_layout_reason().c_str());
     std::fflush(stdout);
   }
   std::vector<fem::PointProbe> probes;
@@ -442,6 +452,10 @@ nlohmann::json run_coupled_case(dealii::ParameterHandler& prm, const std::filesy
   observer.finish();
 
   add_coupled_run_figures(j, p, r);
+  j["mpi_ranks"] = dealii::Utilities::MPI::n_mpi_processes(comm);
+  j["particle_region_steps_on"] = p.particle_layout(); // "ranks", "rank 0", "one process"
+  if (!p.particle_layout_reason().empty())
+    j["particle_region_on_rank0_because"] = p.particle_layout_reason();
   if (checkpoint.resume)
     j["resumed_from"] = {{"file", checkpoint.file.string()},
                          {"step", checkpoint.resumed_step},
