@@ -150,8 +150,11 @@ void CoupledProblem::band_kappa_on_rank(const dem::ParticleStore& p)
       continue;
     const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
     const Vec3 e = chord.normalized(), F = band_force_[j] / alpha, M = band_moment_[j] / alpha;
-    const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
-    const double tau_max = dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
+    const dem::FailureConstants& constants = b.failure_constants(k); // its class's
+    const auto s =
+        dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], constants.moment_factor);
+    const double tau_max =
+        dem::shear_strength(law.shear, constants, band_shear_[n], s.normal_force, s.area);
     const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
     band_found_[0] = std::max(band_found_[0], kappa);
     if (kappa >= 1 && !band_damage_.reached && (band_found_[1] < 0 || double(n) < band_found_[1]))
