@@ -60,6 +60,7 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
   margin_ = settings_.fine_margin > 0 ? settings_.fine_margin : std::numeric_limits<int>::max() / 4;
   index_packing();
   find_envelope_lines();
+  lay_out_averaging();
 }
 
 GridLines AdaptiveRegion::envelope_grid(const HandshakeGeometry& g, const Vec3& envelope_lo,
@@ -415,41 +416,87 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
   for (const auto& cell : fe.get_dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       measure_cell(fe, cell, values);
-  // the non-local average over the FE cells within R (file comment)
-  const double R = settings_.averaging_radius;
-  max_utilisation_ = 0;
-  for (std::size_t c = 0; c < continuum_.size(); ++c)
-  {
-    averaged_[c] = 0.f;
-    if (!continuum_[c])
-      continue;
-    const Vec3 x = centre(c);
-    std::array<int, 3> lo{}, hi{};
-    for (int d = 0; d < 3; ++d)
-    {
-      Vec3 a = x, b = x;
-      a[d] -= R, b[d] += R;
-      lo[d] = cell_of(a)[d], hi[d] = cell_of(b)[d];
-    }
-    double sum = 0, weights = 0;
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-        {
-          const std::size_t o = cell_index(i, j, k);
-          if (!continuum_[o])
-            continue;
-          const double r2 = (centre(o) - x).squaredNorm() / (R * R);
-          if (r2 >= 1)
-            continue;
-          const double w = (1 - r2) * (1 - r2) * cell_volume_[o];
-          sum += w * utilisation_[o];
-          weights += w;
-        }
-    averaged_[c] = float(weights > 0 ? sum / weights : utilisation_[c]);
-    max_utilisation_ = std::max(max_utilisation_, double(averaged_[c]));
-  }
+  average_utilisation();
   largest_utilisation_ = std::max(largest_utilisation_, max_utilisation_);
+}
+
+// Per axis, the grid cells whose centres may lie within R of each cell's centre, and the squared
+// centre distances to them: the average's weights without searching the grid at every measure
+// (its lines never move).
+void AdaptiveRegion::lay_out_averaging()
+{
+  const double R = settings_.averaging_radius;
+  for (int d = 0; d < 3; ++d)
+  {
+    auto& axis = averaging_axes_[d];
+    const auto& l = lines_[d];
+    axis.first.resize(n_[d]);
+    axis.offset.resize(n_[d] + 1);
+    axis.distance2.clear();
+    auto cell_at = [&](double x)
+    {
+      const long i = long(std::upper_bound(l.begin(), l.end(), x) - l.begin()) - 1;
+      return int(std::clamp(i, 0L, long(n_[d]) - 1));
+    };
+    for (int i = 0; i < n_[d]; ++i)
+    {
+      const double x = 0.5 * (l[i] + l[i + 1]);
+      const int lo = cell_at(x - R), hi = cell_at(x + R);
+      axis.first[i] = lo;
+      axis.offset[i] = int(axis.distance2.size());
+      for (int o = lo; o <= hi; ++o)
+      {
+        const double dx = 0.5 * (l[o] + l[o + 1]) - x;
+        axis.distance2.push_back(dx * dx);
+      }
+    }
+    axis.offset[n_[d]] = int(axis.distance2.size());
+  }
+}
+
+// Ubar_c of the file comment over the continuum's cells, and its largest value.
+void AdaptiveRegion::average_utilisation()
+{
+  const double R = settings_.averaging_radius;
+  const double R2 = R * R;
+  const auto& [ax, ay, az] = averaging_axes_;
+  max_utilisation_ = 0;
+  for (int k = 0; k < n_[2]; ++k)
+    for (int j = 0; j < n_[1]; ++j)
+      for (int i = 0; i < n_[0]; ++i)
+      {
+        const std::size_t c = cell_index(i, j, k);
+        averaged_[c] = 0.f;
+        if (!continuum_[c])
+          continue;
+        double sum = 0, weights = 0;
+        for (int kk = az.offset[k]; kk < az.offset[k + 1]; ++kk)
+        {
+          const int ko = az.first[k] + (kk - az.offset[k]);
+          for (int jj = ay.offset[j]; jj < ay.offset[j + 1]; ++jj)
+          {
+            const int jo = ay.first[j] + (jj - ay.offset[j]);
+            if (ay.distance2[jj] + az.distance2[kk] >= R2) // r >= R whatever the x offset
+              continue;
+            const std::size_t row = cell_index(ax.first[i], jo, ko);
+            for (int ii = ax.offset[i]; ii < ax.offset[i + 1]; ++ii)
+            {
+              const std::size_t o = row + std::size_t(ii - ax.offset[i]);
+              if (!continuum_[o])
+                continue;
+              // in the order of |x_o - x_c|^2 / R^2 (the same sums as the centres' distance)
+              const double r2 = (ax.distance2[ii] + ay.distance2[jj] + az.distance2[kk]) / R2;
+              if (r2 >= 1)
+                continue;
+              const double w = (1 - r2) * (1 - r2) * cell_volume_[o];
+              sum += w * utilisation_[o];
+              weights += w;
+            }
+          }
+        }
+        averaged_[c] = float(weights > 0 ? sum / weights : utilisation_[c]);
+        max_utilisation_ = std::max(max_utilisation_, double(averaged_[c]));
+      }
 }
 
 void AdaptiveRegion::measure_cell(const fem::ExplicitDynamics& fe,
