@@ -60,6 +60,7 @@ AdaptiveRegion::AdaptiveRegion(const AdaptiveRegionSettings& settings, const Gri
   margin_ = settings_.fine_margin > 0 ? settings_.fine_margin : std::numeric_limits<int>::max() / 4;
   index_packing();
   find_envelope_lines();
+  lay_out_averaging();
 }
 
 GridLines AdaptiveRegion::envelope_grid(const HandshakeGeometry& g, const Vec3& envelope_lo,
@@ -415,40 +416,7 @@ void AdaptiveRegion::measure(const fem::ExplicitDynamics& fe, const std::vector<
   for (const auto& cell : fe.get_dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       measure_cell(fe, cell, values);
-  // the non-local average over the FE cells within R (file comment)
-  const double R = settings_.averaging_radius;
-  max_utilisation_ = 0;
-  for (std::size_t c = 0; c < continuum_.size(); ++c)
-  {
-    averaged_[c] = 0.f;
-    if (!continuum_[c])
-      continue;
-    const Vec3 x = centre(c);
-    std::array<int, 3> lo{}, hi{};
-    for (int d = 0; d < 3; ++d)
-    {
-      Vec3 a = x, b = x;
-      a[d] -= R, b[d] += R;
-      lo[d] = cell_of(a)[d], hi[d] = cell_of(b)[d];
-    }
-    double sum = 0, weights = 0;
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-        {
-          const std::size_t o = cell_index(i, j, k);
-          if (!continuum_[o])
-            continue;
-          const double r2 = (centre(o) - x).squaredNorm() / (R * R);
-          if (r2 >= 1)
-            continue;
-          const double w = (1 - r2) * (1 - r2) * cell_volume_[o];
-          sum += w * utilisation_[o];
-          weights += w;
-        }
-    averaged_[c] = float(weights > 0 ? sum / weights : utilisation_[c]);
-    max_utilisation_ = std::max(max_utilisation_, double(averaged_[c]));
-  }
+  average_utilisation();
   largest_utilisation_ = std::max(largest_utilisation_, max_utilisation_);
 }
 

@@ -205,6 +205,8 @@ private:
   void require_whole_particles_in_cells() const;
   void index_packing();
   void find_envelope_lines();
+  void lay_out_averaging();
+  void average_utilisation();
   /// FE values at the centres of the grid cells an FE cell covers, by their counts per axis.
   using CoveredValues = std::map<std::array<int, 3>, std::unique_ptr<dealii::FEValues<3>>>;
   /// U of the grid cells that the FE cell @p cell covers (its strain at their centres).
@@ -230,6 +232,14 @@ private:
   std::map<std::array<std::int64_t, 3>, std::int32_t> packing_index_;
   double max_utilisation_ = 0;
   double largest_utilisation_ = 0;
+  /// Per axis and grid cell: the first cell of the average's reach, and from offset[i] to
+  /// offset[i + 1] the squared centre distances (m^2) to the cells from it on.
+  struct AveragingAxis
+  {
+    std::vector<int> first, offset;
+    std::vector<double> distance2;
+  };
+  std::array<AveragingAxis, 3> averaging_axes_;
   int layers_ = 1; ///< n of the file comment
   int margin_ = 0; ///< m of the file comment
   std::array<int, 3> envelope_first_{{0, 0, 0}}, envelope_last_{{0, 0, 0}}; ///< grid lines
