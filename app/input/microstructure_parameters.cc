@@ -266,7 +266,7 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
       c.boundary_joint_friction = joint_friction(prm, section, true, 0.0);
       if (!has_class[0])
         throw dem::InputError(section + "/joint friction: set, but the case has no grains "
-                              "(Microstructure/grains = columnar makes them)");
+                                        "(Microstructure/grains = columnar makes them)");
     }
     prm.leave_subsection();
     if (smooth && !has_class[k])

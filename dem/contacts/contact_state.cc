@@ -42,7 +42,7 @@ void ContactForces::link_pairs_to_bonds()
   for (std::size_t k = 0; k < pair_joint_.size(); ++k)
   {
     const auto i = std::size_t(first[k]), j = std::size_t(second[k]);
-    pair_joint_[k] = joint_side_[i] != joint_side_[j]                            ? 1
+    pair_joint_[k] = joint_side_[i] != joint_side_[j]                              ? 1
                      : !joint_grain_.empty() && joint_grain_[i] != joint_grain_[j] ? 2
                                                                                    : 0;
   }

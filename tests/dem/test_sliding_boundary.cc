@@ -19,8 +19,8 @@ using namespace dembridge::dem;
 
 namespace
 {
-constexpr double R = 2.5e-3, rho = 917;                    // m, kg/m^3
-constexpr double kn = 1.57e7, kt = 2.0 / 7.0 * kn;         // N/m
+constexpr double R = 2.5e-3, rho = 917;                            // m, kg/m^3
+constexpr double kn = 1.57e7, kt = 2.0 / 7.0 * kn;                 // N/m
 constexpr double mu_contacts = 0.5, mu_boundary = 0.1, u_n = 1e-6; // -, -, m
 const Vec3 N = Vec3(std::cos(std::numbers::pi / 6), std::sin(std::numbers::pi / 6), 0);
 const Vec3 t = Vec3(-N.y(), N.x(), 0); // in the boundary's plane and across the columns (z)
