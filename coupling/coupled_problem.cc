@@ -184,8 +184,11 @@ void CoupledProblem::check_band_damage()
         continue;
       const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
       const Vec3 e = chord.normalized(), F = b.force[k] / alpha, M = b.moment[k] / alpha;
-      const auto s = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], law.moment_factor);
-      const double tau_max = dem::shear_strength(law, band_shear_[n], s.normal_force, s.area);
+      const dem::FailureConstants& constants = b.failure_constants(k); // its class's
+      const auto s =
+          dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], constants.moment_factor);
+      const double tau_max =
+          dem::shear_strength(law.shear, constants, band_shear_[n], s.normal_force, s.area);
       const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
       if (adaptive_)
         band_kappa_[n] = kappa;

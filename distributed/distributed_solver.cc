@@ -51,17 +51,24 @@ constexpr std::size_t bond_state_doubles = 8;
 
 DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSettings& settings,
                                      MPI_Comm comm, const BackgroundGrid* grid,
-                                     const Restore& restore, bool resume)
+                                     const Restore& restore, bool resume, bool one_rank_contacts)
     : model_(model), comm_(comm), root_(dealii::Utilities::MPI::this_mpi_process(comm) == 0),
       n_ranks_(dealii::Utilities::MPI::n_mpi_processes(comm)), settings_(settings),
       report_(root_ || resume ? std::make_unique<dem::ExplicitSolver>(
                                     model.particles, model.bonds, model.groups, model.constraints,
                                     model.loads, settings)
                               : nullptr),
-      particles_(model, restore_whole(grid, restore, resume), comm)
+      particles_(model, restore_whole(grid, restore, resume, one_rank_contacts), comm)
 {
   for (const auto& g : model.groups)
     group_sizes_.push_back(g.members.size());
+  for (const auto& l : model.loads)
+    if (l.kind == dem::LoadKind::pressure && l.ratio_load >= 0 &&
+        std::find(followed_loads_.begin(), followed_loads_.end(), l.ratio_load) ==
+            followed_loads_.end())
+      followed_loads_.push_back(l.ratio_load);
+  followed_reactions_.assign(followed_loads_.size(), std::numeric_limits<double>::quiet_NaN());
+  followed_buffer_.resize(followed_loads_.size() * n_ranks_);
   if (report_contacts_)
   {
     contacts_ = std::make_unique<dem::ContactForces>(*report_contacts_);
@@ -96,15 +103,18 @@ DistributedSolver::DistributedSolver(dem::Model& model, const dem::SolverSetting
 }
 
 BackgroundGrid DistributedSolver::restore_whole(const BackgroundGrid* grid, const Restore& restore,
-                                                bool resume)
+                                                bool resume, bool one_rank_contacts)
 {
   for (const auto& c : model_.contributions)
     if (auto* found = dynamic_cast<dem::ContactForces*>(c.get()))
       report_contacts_ = found;
   if (report_ && report_contacts_)
   {
-    contact_checkpoint_ = std::make_unique<ContactCheckpoint>(*report_contacts_);
+    contact_checkpoint_ =
+        std::make_unique<ContactCheckpoint>(*report_contacts_, resume && one_rank_contacts);
     report_->add_contribution(contact_checkpoint_.get());
+    if (resume && one_rank_contacts) // read as that run's contacts were: over the whole model
+      report_contacts_->attach(model_.particles, model_.bonds);
   }
   resumed_ = resume;
   // every rank learns whether one could not restore (a damaged checkpoint, say): all stop with
@@ -142,6 +152,26 @@ void DistributedSolver::continue_restored_run()
   const auto& ids = particles_.global_ids();
   for (std::size_t i = 0; i < particles_.n_owned(); ++i)
     local_->set_support_reaction(i, report_->support_reaction(std::size_t(ids[i])));
+  share_group_reactions(); // the restored reactions' sums, which the next step's pressure reads
+}
+
+void DistributedSolver::share_group_reactions()
+{
+  if (followed_loads_.empty())
+    return;
+  std::vector<double> mine(followed_loads_.size());
+  for (std::size_t f = 0; f < mine.size(); ++f)
+    mine[f] = local_->own_group_reaction(followed_loads_[f]);
+  MPI_Allgather(mine.data(), int(mine.size()), MPI_DOUBLE, followed_buffer_.data(),
+                int(mine.size()), MPI_DOUBLE, comm_);
+  for (std::size_t f = 0; f < mine.size(); ++f)
+  {
+    double sum = 0; // in rank order, as the energies
+    for (unsigned r = 0; r < n_ranks_; ++r)
+      sum += followed_buffer_[r * mine.size() + f];
+    followed_reactions_[f] = sum;
+    local_->set_group_reaction(followed_loads_[f], sum);
+  }
 }
 
 void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& state)
@@ -169,6 +199,9 @@ void DistributedSolver::build_local_solver(dem::ExplicitSolver::RunningState&& s
   local_->set_running_state(std::move(state));
   for (const auto& [i, r] : particles_.reactions())
     local_->set_support_reaction(i, r);
+  for (std::size_t f = 0; f < followed_loads_.size(); ++f)
+    if (!std::isnan(followed_reactions_[f])) // (a migration: the sums of the step before it)
+      local_->set_group_reaction(followed_loads_[f], followed_reactions_[f]);
   if (contacts_)
   {
     contacts_->distribute(owned, particles_.global_ids(), contact_history_);
@@ -200,6 +233,7 @@ void DistributedSolver::step(bool record)
   auto t0 = clock::now();
   const double step_time = local_->time();
   local_->step(record);
+  share_group_reactions();
   timings_.local_step += since(t0);
   t0 = clock::now();
   particles_.update_ghosts();
@@ -451,6 +485,8 @@ void DistributedSolver::gather(bool all)
   state.energy = energy_, state.max_speed = max_speed_, state.unbalanced = unbalanced_;
   state.unbalanced_ratio = unbalanced_ratio_;
   state.broken_by_mode = broken_by_mode_;
+  for (std::size_t k = 0; k < state.applied_pressure.size(); ++k) // the same on every rank
+    state.applied_pressure[k] = local_->applied_pressure(k);
   dem::BondStore& whole_bonds = model_.bonds;
   for (const auto& e : arrived)
   {

@@ -40,7 +40,7 @@ public:
   /// each from its part of the restored model, rank 0 with the running sums.
   DistributedSolver(dem::Model& model, const dem::SolverSettings& settings, MPI_Comm comm,
                     const BackgroundGrid* grid = nullptr, const Restore& restore = {},
-                    bool resume = false);
+                    bool resume = false, bool one_rank_contacts = false);
 
   /// One step on every rank (collective): the local step, the ghosts' refresh, a migration
   /// when due (or a throw on every rank when some rank became unstable); on record steps the
@@ -89,13 +89,17 @@ public:
 private:
   /// The initializer's step between the report solver and the particles: attaches the contacts'
   /// checkpoint to the report solver, restores (restore), and gives the background mesh.
-  BackgroundGrid restore_whole(const BackgroundGrid* grid, const Restore& restore, bool resume);
+  BackgroundGrid restore_whole(const BackgroundGrid* grid, const Restore& restore, bool resume,
+                               bool one_rank_contacts);
   /// A resumed run's local solver, its support reactions and the figures of the checkpoint.
   void continue_restored_run();
   /// Collective: the gathered bond states into rank 0's model; @p every_bond: intact ones too.
   void gather_bond_states(bool every_bond);
   void build_local_solver(dem::ExplicitSolver::RunningState&& state);
   void migrate();
+  /// Collective: the support reaction of each load a pressure follows (its ratio load) summed
+  /// over the ranks in rank order, into the local solver: each rank holds only its members.
+  void share_group_reactions();
   /// Collective: rank 0's model's contacts take the figures of the step at @p time summed over
   /// the ranks.
   void reduce_contacts(double time);
@@ -128,6 +132,9 @@ private:
   std::array<long, 2> broken_by_mode_{};
   std::size_t cracks_gathered_ = 0; ///< of the local crack log
   std::vector<double> reduce_buffer_;
+  /// the loads a pressure's ratio follows, and their reactions over the ranks (NaN: none yet)
+  std::vector<int> followed_loads_;
+  std::vector<double> followed_reactions_, followed_buffer_;
   Timings timings_;
   /// rank 0: the model's bond index of each pair of global ids, and user id -> global id
   std::unordered_map<std::uint64_t, std::size_t> bond_index_;

@@ -83,6 +83,13 @@ std::string FieldArchive::where() const
 
 void ContactCheckpoint::visit_state(dem::StateArchive& a)
 {
+  if (one_rank_layout_ && a.loading())
+  {
+    whole_.visit_state(a);
+    history_.clear();
+    whole_.export_history(history_); // by the model's indices (never spread: no global ids)
+    return;
+  }
   {
     dem::StateGroup group(a, "ranks");
     a.io("contact_history", history_);

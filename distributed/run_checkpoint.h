@@ -68,7 +68,13 @@ private:
 class ContactCheckpoint : public dem::StepContribution
 {
 public:
-  explicit ContactCheckpoint(dem::ContactForces& whole) : whole_(whole) {}
+  /// @p one_rank_layout: a resume reads a checkpoint written on one rank, where this
+  /// contribution's place holds @p whole's own state (the contacts over the model's indices, which
+  /// are the global ids), and takes the histories from it.
+  explicit ContactCheckpoint(dem::ContactForces& whole, bool one_rank_layout = false)
+      : whole_(whole), one_rank_layout_(one_rank_layout)
+  {
+  }
   void add_forces(dem::ParticleStore&, double, double, bool) override {}
   bool checkpointable() const override { return true; }
   void visit_state(dem::StateArchive& a) override;
@@ -77,6 +83,7 @@ public:
 
 private:
   dem::ContactForces& whole_;
+  bool one_rank_layout_;
   std::vector<double> history_;
 };
 

@@ -11,14 +11,8 @@
 
 namespace dembridge::distributed
 {
-std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints)
+std::string unsupported_on_ranks(const dem::Model& model)
 {
-  // why: the pressure of the last step is the solver's state, which the ranks do not gather
-  for (const auto& l : model.loads)
-    if (checkpoints && l.kind == dem::LoadKind::pressure)
-      return "Load " + l.name +
-             "/type: a pressure load is not checkpointed on several MPI ranks yet (run it on "
-             "one rank, or without checkpoints)";
   for (const auto& c : model.contributions)
   {
     const auto* contacts = dynamic_cast<const dem::ContactForces*>(c.get());
@@ -151,9 +145,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   // why: every rank must take the same steps for records, snapshots and reductions
   static_assert(std::is_trivially_copyable_v<dem::RunSchedule>);
   MPI_Bcast(&sched, int(sizeof(sched)), MPI_BYTE, 0, comm);
-  const bool checkpoints =
-      resume.resume || sched.checkpoint_interval > 0 || sched.checkpoint_wall_interval > 0;
-  if (const std::string why = unsupported_on_ranks(model, checkpoints); !why.empty())
+  if (const std::string why = unsupported_on_ranks(model); !why.empty())
     throw dem::InputError(why);
   dem::RunProgress progress;
   progress.next_checkpoint_time = sched.checkpoint_interval;
@@ -172,7 +164,7 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& c, dem::Ru
   };
   DistributedSolver solver(
       model, {model.time_step, c.run.particle_damping, c.run.threads, c.run.mass_damping}, comm,
-      nullptr, restore, resume.resume);
+      nullptr, restore, resume.resume, resume.one_rank_contacts);
   const long first_step = solver.steps();
   if (!root) // each rank keeps its part; rank 0 keeps the whole model for the outputs
     model.particles = {}, model.bonds = {};

@@ -13,8 +13,7 @@
 // writes it, and every rank learns whether the write failed (and then throws its error). A
 // checkpoint so written holds the whole run, and resumes on any number of ranks.
 // Not yet on several ranks (unsupported_on_ranks): the contact monitor, more than 32 groups,
-// smooth joints (weak-plane or basal), a checkpoint of a pressure load; the static solver (the
-// caller refuses it).
+// smooth joints (weak-plane or basal); the static solver (the caller refuses it).
 #include "dem/solvers/run_explicit.h"
 #include "distributed/bond_piece.h"
 #include <deal.II/base/mpi.h>
@@ -29,6 +28,8 @@ struct Resume
   bool resume = false;
   /// Calls the visit with the checkpoint's archive.
   std::function<void(const std::function<void(dem::StateArchive&)>&)> read;
+  /// The checkpoint was written by a run on one rank: its contacts are in one store's layout.
+  bool one_rank_contacts = false;
 };
 
 /// Writes a snapshot in pieces, on every rank (collective): the first @p n_owned particles of
@@ -60,7 +61,6 @@ dem::RunResult run_explicit(dem::Model& model, const dem::CaseConfig& config,
                             const Resume& resume = {}, const SnapshotPieces& pieces = {},
                             RanksReport* ranks = nullptr);
 
-/// Why a model cannot run on several ranks yet (empty: it can); @p checkpoints: with
-/// checkpoints or a resume.
-std::string unsupported_on_ranks(const dem::Model& model, bool checkpoints = false);
+/// Why a model cannot run on several ranks yet (empty: it can).
+std::string unsupported_on_ranks(const dem::Model& model);
 } // namespace dembridge::distributed

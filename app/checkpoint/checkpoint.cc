@@ -255,8 +255,11 @@ void check_checkpoint_file(CheckpointSettings& s, const std::string& output_dir,
   const CheckpointHeader h = read_checkpoint_header(s.file);
   check_same_case(h, s.case_text, s.file);
   // why: each rank sums its share of the continuum's works; bit-for-bit needs the same split.
-  // A DEM run on several ranks writes the whole run; on one its contacts in one store's layout.
-  s.whole_run = any_ranks && (h.mpi_ranks > 1 || holds_contacts_of_ranks(s.file));
+  // A DEM run on several ranks writes the whole run; on one its contacts in one store's layout,
+  // which a DEM run on several ranks reads as such.
+  const bool of_ranks = any_ranks && (h.mpi_ranks > 1 || holds_contacts_of_ranks(s.file));
+  s.one_rank_contacts = any_ranks && !of_ranks && s.ranks > 1;
+  s.whole_run = of_ranks || s.one_rank_contacts;
   if (h.mpi_ranks != s.ranks && !s.whole_run)
     throw InputError(s.file.string() + ": the checkpoint was written by a run on " +
                      std::to_string(h.mpi_ranks) + " MPI rank(s), this run has " +
@@ -319,6 +322,7 @@ CheckpointSettings prepare_checkpoint(const dealii::ParameterHandler& prm,
     s.resumed_step = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_step, 0);
     s.resumed_time = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.resumed_time, 0);
     s.whole_run = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.whole_run, 0);
+    s.one_rank_contacts = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, s.one_rank_contacts, 0);
   }
   if (!refused.empty())
     throw InputError(refused);

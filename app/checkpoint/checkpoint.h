@@ -44,6 +44,9 @@ struct CheckpointSettings
   /// resume: a DEM checkpoint of the run on several ranks (distributed/run_checkpoint.h), which
   /// resumes on any number of ranks
   bool whole_run = false;
+  /// resume on several ranks: a DEM checkpoint written on one rank, whose contacts are in one
+  /// store's layout (read so and spread by the model's indices, distributed/run_checkpoint.h)
+  bool one_rank_contacts = false;
   long resumed_step = 0; ///< the checkpoint's step and time (resume)
   double resumed_time = 0;
   std::string case_name; ///< the case file's name (messages, header)

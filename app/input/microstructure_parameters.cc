@@ -131,8 +131,13 @@ void declare_microstructure_parameters(ParameterHandler& prm)
       prm.declare_entry(key, "", Anything(),
                         std::string("As Damage/") + key +
                             ", for this class (mean; the scatter is Damage's); empty: the Damage "
-                            "value. The failure law, friction angle, moment factor and fracture "
-                            "energies are the specimen's (Damage).");
+                            "value.");
+    for (const char* key :
+         {"friction angle", "moment factor", "fracture energy mode I", "fracture energy mode II"})
+      prm.declare_entry(key, "", Anything(),
+                        std::string("As Damage/") + key +
+                            ", for this class's bonds; empty: the Damage value. The failure "
+                            "mode and the shear criterion are the specimen's (Damage).");
     if (std::string(section) == "Bond class basal")
       prm.declare_entry(
           "smooth joint", "false", Bool(),
@@ -258,6 +263,10 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     cls.tensile_strength = value("tensile strength", cls.tensile_strength);
     cls.shear_strength = value("shear strength", cls.shear_strength);
     cls.cohesion = value("cohesion", cls.cohesion);
+    cls.friction_angle = value("friction angle", cls.friction_angle);
+    cls.moment_factor = value("moment factor", cls.moment_factor);
+    cls.fracture_energy_I = value("fracture energy mode I", cls.fracture_energy_I);
+    cls.fracture_energy_II = value("fracture energy mode II", cls.fracture_energy_II);
     const bool smooth = k > 0 && prm.get_bool("smooth joint");
     if (k == 1)
       c.joint_friction = joint_friction(prm, section, smooth, c.joint_friction);

@@ -131,8 +131,8 @@ void add_bond_data(VtuFile& file, const dem::ParticleStore& p, const dem::BondSt
     for (int d = 0; d < 3; ++d)
       force[3 * k + std::size_t(d)] = F[d];
     // beam theory on the section (bond_stress.h) from the forces the bond carries
-    const dem::BondStress st =
-        dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], b.failure.moment_factor);
+    const dem::BondStress st = dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k],
+                                                b.failure_constants(k).moment_factor);
     state[k] = std::uint8_t(b.state[k]); // 0 intact, 1 softening, 2 broken
     tensile[k] = st.tensile;
     shear_stress[k] = st.shear;

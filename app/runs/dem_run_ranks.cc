@@ -23,7 +23,8 @@ bool on_ranks(const CheckpointSettings& checkpoint)
 distributed::Resume resume_of(const CheckpointSettings& checkpoint)
 {
   return {checkpoint.resume,
-          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); }};
+          [file = checkpoint.file](const auto& visit) { read_checkpoint(file, visit); },
+          checkpoint.one_rank_contacts};
 }
 /// On several ranks: every rank writes its particles' and its bonds' pieces of each snapshot
 /// (ParticlePieces).
@@ -55,9 +56,7 @@ bool run_dem_case_on_other_rank(const dem::CaseConfig& config, dem::Model& model
     solve_static_on_other_rank(model, config);
     return true;
   }
-  if (const std::string why =
-          distributed::unsupported_on_ranks(model, checkpoint.enabled() || checkpoint.resume);
-      !why.empty())
+  if (const std::string why = distributed::unsupported_on_ranks(model); !why.empty())
     throw dem::InputError(why);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     return false;

@@ -34,8 +34,12 @@
 // v^{n-1/2}, w^{n-1/2}: the change of the scheme's conserved (time-centred) energy when the bond's
 // stiffness drops by dD at step n, so the balance of thesis eq. 53 closes to round-off for linear
 // bonds through softening and breaking. A brittle break is (5) with dD = 1.
+// Bond classes (bond_class.h) may each have their own phi, beta and G_f (FailureConstants): a
+// bond reads its class's in (1)-(4); the mode and the shear criterion are the store's.
+#include "dem/bonds/bond_class.h"
 #include "dem/core/types.h"
 #include <algorithm>
+#include <array>
 #include <cstdint>
 
 namespace dembridge::dem
@@ -53,15 +57,26 @@ enum class ShearCriterion : std::uint8_t
   mohr_coulomb ///< tau_max = c + sigma_c tan(phi)
 };
 
-/// Failure law of the bonds of one material (the per-bond strengths are in BondStore).
-struct FailureLaw
+/// The constants of the failure law that a bond class may set for itself (bond_class.h).
+struct FailureConstants
 {
-  FailureMode mode = FailureMode::none;
-  ShearCriterion shear = ShearCriterion::constant;
   double tan_friction = 0;       ///< tan(phi), Mohr-Coulomb
   double moment_factor = 1;      ///< beta in [0, 1] (bond_stress.h)
   double fracture_energy_I = 0;  ///< G_f, J/m^2, tension governs (softening)
   double fracture_energy_II = 0; ///< G_f, J/m^2, shear governs (softening)
+};
+
+/// Failure law of the bonds of one material (the per-bond strengths are in BondStore): the
+/// mode and shear criterion of every bond; its own constants are those of a store without
+/// classes (and of the intra-grain bonds).
+struct FailureLaw : FailureConstants
+{
+  FailureMode mode = FailureMode::none;
+  ShearCriterion shear = ShearCriterion::constant;
+  /// With by_class, a store with classes reads each bond's constants here by its class (a
+  /// table of four, not a copy per bond: the class byte is the per-bond value).
+  std::array<FailureConstants, bond_class_count> classes{};
+  bool by_class = false;
 };
 
 /// Which stress governed a failure.
@@ -83,13 +98,21 @@ struct CrackEvent
   double energy = 0; ///< J: strain energy released (brittle) or dissipated in softening
 };
 
-/// Shear strength of eq. (2) at the tensile normal force F_n (N) on the area A.
+/// Shear strength of eq. (2) at the tensile normal force F_n (N) on the area A, with the
+/// constants @p k (a bond class's, or the law's own).
+inline double shear_strength(ShearCriterion criterion, const FailureConstants& k, double strength,
+                             double normal_force, double area)
+{
+  if (criterion == ShearCriterion::constant)
+    return strength;
+  return strength + std::max(0.0, -normal_force / area) * k.tan_friction; // eq. (2)
+}
+
+/// Shear strength of eq. (2) with the law's own constants.
 inline double shear_strength(const FailureLaw& law, double strength, double normal_force,
                              double area)
 {
-  if (law.shear == ShearCriterion::constant)
-    return strength;
-  return strength + std::max(0.0, -normal_force / area) * law.tan_friction; // eq. (2)
+  return shear_strength(law.shear, law, strength, normal_force, area);
 }
 
 /// Damage of eq. (3) at the largest failure index kappa_hat reached.

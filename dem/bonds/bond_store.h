@@ -101,6 +101,13 @@ struct BondStore
       return &basal_normal[k];
     return nullptr;
   }
+  /// The failure constants bond k fails by: its class's, or the law's own (no classes).
+  const FailureConstants& failure_constants(std::size_t k) const
+  {
+    if (failure.by_class && !bond_class.empty())
+      return failure.classes[std::size_t(bond_class[k])];
+    return failure;
+  }
   /// Share (1 - D) of its trial forces that bond k carries (0 when broken).
   double load_factor(std::size_t k) const
   {

@@ -130,7 +130,7 @@ void DamageConfig::validate() const
 }
 
 void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vector<Vec3>* positions,
-                           std::span<const StrengthMeans> class_means)
+                           std::span<const ClassDamage> classes)
 {
   c.validate();
   const std::size_t n = b.size();
@@ -148,13 +148,17 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
   if (!on)
     return;
   const double shear_mean = c.law.shear == ShearCriterion::constant ? c.shear_strength : c.cohesion;
-  const bool by_class = !class_means.empty() && b.bond_class.size() == n;
-  if (by_class && class_means.size() < bond_class_count)
+  const bool by_class = !classes.empty() && b.bond_class.size() == n;
+  if (by_class && classes.size() < bond_class_count)
     throw std::logic_error("assign_bond_strengths: a mean per bond class needed");
+  b.failure.by_class = by_class;
+  if (by_class)
+    for (std::size_t k = 0; k < bond_class_count; ++k)
+      b.failure.classes[k] = classes[k].law;
   auto means = [&](std::size_t k)
   {
-    return by_class ? class_means[std::size_t(b.bond_class[k])]
-                    : StrengthMeans{c.tensile_strength, shear_mean};
+    return by_class ? classes[std::size_t(b.bond_class[k])]
+                    : ClassDamage{c.tensile_strength, shear_mean, b.failure};
   };
   if (c.scatter_by_position && c.scatter != StrengthScatter::none)
   {
@@ -164,7 +168,7 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
     {
       const Vec3 mid = 0.5 * ((*positions)[b.a[k]] + (*positions)[b.b[k]]);
       StrengthSampler sample(c, position_seed(c.seed, mid));
-      const StrengthMeans mean = means(k);
+      const ClassDamage mean = means(k);
       b.tensile_strength[k] = sample.draw(mean.tensile);
       b.shear_strength[k] = sample.draw(mean.shear);
     }
@@ -174,38 +178,49 @@ void assign_bond_strengths(BondStore& b, const DamageConfig& c, const std::vecto
     StrengthSampler sample(c);
     for (std::size_t k = 0; k < n; ++k)
     {
-      const StrengthMeans mean = means(k);
+      const ClassDamage mean = means(k);
       b.tensile_strength[k] = sample.draw(mean.tensile);
       b.shear_strength[k] = sample.draw(mean.shear);
     }
   }
   if (c.law.mode != FailureMode::softening)
     return;
-  // Snap-back (bond_damage.h eq. 4): G_f A >= U_peak of pure tension and of pure shear.
-  double need_I = 0, need_II = 0;        // largest U_peak / A over the bonds, J/m^2
-  std::size_t needy_I = 0, needy_II = 0; // the bonds that need them
+  // Snap-back (bond_damage.h eq. 4): G_f A >= U_peak of pure tension and of pure shear, each
+  // bond against its class's G_f; the worst shortfall per key is named.
+  double worst_I = 1, worst_II = 1;      // least G_f / (U_peak / A) over the bonds
+  std::size_t needy_I = n, needy_II = n; // the bonds that fall short the most
   for (std::size_t k = 0; k < n; ++k)
   {
+    const FailureConstants& law = b.failure_constants(k);
     const double area = std::numbers::pi * b.radius[k] * b.radius[k];
     const double u_I = b.tensile_strength[k] * b.tensile_strength[k] * area / (2 * b.kn[k]);
     const double u_II = b.shear_strength[k] * b.shear_strength[k] * area / (2 * b.ks[k]);
-    if (u_I > need_I)
-      need_I = u_I, needy_I = k;
-    if (u_II > need_II)
-      need_II = u_II, needy_II = k;
+    if (law.fracture_energy_I < worst_I * u_I)
+      worst_I = law.fracture_energy_I / u_I, needy_I = k;
+    if (law.fracture_energy_II < worst_II * u_II)
+      worst_II = law.fracture_energy_II / u_II, needy_II = k;
   }
-  for (auto [g, need, needy, key, what] :
-       {std::tuple{c.law.fracture_energy_I, need_I, needy_I, "fracture energy mode I",
-                   "sigma_t^2 A / (2 k_n)"},
-        std::tuple{c.law.fracture_energy_II, need_II, needy_II, "fracture energy mode II",
-                   "tau^2 A / (2 k_s)"}})
-    if (g < need)
-      throw InputError(std::string("Damage/") + key + ": " + number(g) +
-                       " J/m^2 is below the elastic energy per bond area at the peak, " + what +
-                       " = " + number(need) + " J/m^2 for the strongest bond" +
-                       (by_class
-                            ? " (a " + std::string(bond_class_name(b.bond_class[needy])) + " bond)"
-                            : std::string()) +
-                       " (snap-back); use at least that");
+  for (auto [needy, mode_II, key, what] :
+       {std::tuple{needy_I, false, "fracture energy mode I", "sigma_t^2 A / (2 k_n)"},
+        std::tuple{needy_II, true, "fracture energy mode II", "tau^2 A / (2 k_s)"}})
+  {
+    if (needy == n)
+      continue;
+    const FailureConstants& law = b.failure_constants(needy);
+    const double g = mode_II ? law.fracture_energy_II : law.fracture_energy_I;
+    const double s = mode_II ? b.shear_strength[needy] : b.tensile_strength[needy];
+    const double k = mode_II ? b.ks[needy] : b.kn[needy];
+    const double need = s * s * std::numbers::pi * b.radius[needy] * b.radius[needy] / (2 * k);
+    const BondClass cls = by_class ? b.bond_class[needy] : BondClass::intra_grain;
+    const std::string section = cls == BondClass::intra_grain
+                                    ? std::string("Damage/")
+                                    : "Bond class " + std::string(bond_class_name(cls)) + "/";
+    throw InputError(
+        section + key + ": " + number(g) +
+        " J/m^2 is below the elastic energy per bond area at the peak, " + what + " = " +
+        number(need) + " J/m^2 for the strongest bond" +
+        (by_class ? " (a " + std::string(bond_class_name(cls)) + " bond)" : std::string()) +
+        " (snap-back); use at least that");
+  }
 }
 } // namespace dembridge::dem

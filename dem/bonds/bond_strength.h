@@ -52,20 +52,23 @@ struct DamageConfig
   void validate() const;
 };
 
-/// Mean strengths of a bond class (bond_class.h), Pa: sigma_t, and tau_c or c as the shear
-/// criterion has it.
-struct StrengthMeans
+/// What a bond class (bond_class.h) fails by: its mean strengths, Pa (sigma_t, and tau_c or c
+/// as the shear criterion has it), and its failure constants (tan phi, moment factor, fracture
+/// energies).
+struct ClassDamage
 {
   double tensile = 0, shear = 0;
+  FailureConstants law;
 };
 
 /// Sets the store's failure law and every bond's strengths (and resets its damage); checks the
 /// softening fracture energies against snap-back. Throws InputError naming Damage/key.
 /// @p positions: the particles' reference positions, needed by scatter_by_position.
-/// @p class_means: per bond class, the means a bond of that class draws around (the scatter
-/// is relative, so a bond's draw is its class mean times the draw of the config's own); empty
-/// or a store without classes: the config's means for every bond.
+/// @p classes: per bond class, the means a bond of that class draws around (the scatter is
+/// relative, so a bond's draw is its class mean times the draw of the config's own) and the
+/// constants it fails by (the store's failure.classes; the snap-back check per class); empty or
+/// a store without classes: the config's means and constants for every bond.
 void assign_bond_strengths(BondStore& bonds, const DamageConfig& config,
                            const std::vector<Vec3>* positions = nullptr,
-                           std::span<const StrengthMeans> class_means = {});
+                           std::span<const ClassDamage> classes = {});
 } // namespace dembridge::dem

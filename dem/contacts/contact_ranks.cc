@@ -4,6 +4,7 @@
 // a receiver keeps any one copy.
 #include "dem/contacts/contact_forces.h"
 #include <algorithm>
+#include <numeric>
 
 namespace dembridge::dem
 {
@@ -66,7 +67,19 @@ void ContactForces::take_distributed_history()
 
 void ContactForces::export_history(std::vector<double>& out) const
 {
-  const auto& ids = *global_id_;
+  // contacts never spread over ranks (one store's, read from a one-rank checkpoint) are keyed
+  // by their store's indices, which are the model's
+  std::vector<std::int64_t> own;
+  if (!global_id_)
+  {
+    int largest = -1;
+    for (const auto* indices : {&list_.first(), &list_.second(), &wall_particle_})
+      for (const auto i : *indices)
+        largest = std::max(largest, int(i));
+    own.resize(std::size_t(largest + 1));
+    std::iota(own.begin(), own.end(), std::int64_t(0));
+  }
+  const auto& ids = global_id_ ? *global_id_ : own;
   auto put =
       [&](std::int64_t a, std::int64_t b, const Vec3& xi, const Vec3& theta, double kt, double kr)
   {

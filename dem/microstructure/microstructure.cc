@@ -14,6 +14,25 @@ std::string number(double v)
   return s.str();
 }
 
+/// A class's friction angle, moment factor and fracture energies as Damage checks its own
+/// (bond_strength.cc), named in the class's section.
+void check_failure_constants(const BondClassConfig& c, const DamageConfig& damage,
+                             const std::string& where)
+{
+  auto refuse = [&](const char* key, double v, const char* why)
+  { throw InputError(where + "/" + key + ": " + why + " (got " + number(v) + ")"); };
+  if (damage.law.shear == ShearCriterion::mohr_coulomb &&
+      !(c.friction_angle >= 0 && c.friction_angle < 90))
+    refuse("friction angle", c.friction_angle, "must lie in [0, 90) degrees");
+  if (!(c.moment_factor >= 0 && c.moment_factor <= 1))
+    refuse("moment factor", c.moment_factor, "must lie in [0, 1]");
+  if (damage.law.mode == FailureMode::softening)
+    for (auto [g, key] : {std::pair{c.fracture_energy_I, "fracture energy mode I"},
+                          std::pair{c.fracture_energy_II, "fracture energy mode II"}})
+      if (!(g > 0) || !std::isfinite(g))
+        refuse(key, g, "softening needs a positive fracture energy, J/m^2");
+}
+
 std::string section(BondClass c)
 {
   return c == BondClass::intra_grain ? "Bonds" : "Bond class " + std::string(bond_class_name(c));
@@ -23,7 +42,14 @@ std::string section(BondClass c)
 BondClassConfig BondClassConfig::of_specimen(const BondMaterial& material,
                                              const DamageConfig& damage)
 {
-  return {material, damage.tensile_strength, damage.shear_strength, damage.cohesion};
+  return {material,
+          damage.tensile_strength,
+          damage.shear_strength,
+          damage.cohesion,
+          damage.friction_angle,
+          damage.law.moment_factor,
+          damage.law.fracture_energy_I,
+          damage.law.fracture_energy_II};
 }
 
 std::array<BondClassConfig, bond_class_count> bond_class_configs(const MicrostructureConfig& config,
@@ -52,20 +78,27 @@ std::array<BondClassConfig, bond_class_count> bond_class_configs(const Microstru
       require(classes[k].shear_strength, "shear strength");
     else
       require(classes[k].cohesion, "cohesion");
+    check_failure_constants(classes[k], damage, where);
   }
   return classes;
 }
 
-std::array<StrengthMeans, bond_class_count>
-class_strength_means(const std::array<BondClassConfig, bond_class_count>& classes,
-                     const DamageConfig& damage)
+std::array<ClassDamage, bond_class_count>
+class_damage(const std::array<BondClassConfig, bond_class_count>& classes,
+             const DamageConfig& damage)
 {
-  std::array<StrengthMeans, bond_class_count> means;
+  std::array<ClassDamage, bond_class_count> out;
   for (std::size_t k = 0; k < bond_class_count; ++k)
-    means[k] = {classes[k].tensile_strength, damage.law.shear == ShearCriterion::constant
-                                                 ? classes[k].shear_strength
-                                                 : classes[k].cohesion};
-  return means;
+  {
+    const BondClassConfig& c = classes[k];
+    FailureConstants law{std::tan(c.friction_angle * std::numbers::pi / 180), c.moment_factor,
+                         c.fracture_energy_I, c.fracture_energy_II};
+    if (damage.law.shear != ShearCriterion::mohr_coulomb)
+      law.tan_friction = damage.law.tan_friction; // as assign_bond_strengths leaves the law's
+    out[k] = {c.tensile_strength,
+              damage.law.shear == ShearCriterion::constant ? c.shear_strength : c.cohesion, law};
+  }
+  return out;
 }
 
 MicrostructureSummary

@@ -10,11 +10,12 @@
 //                   cone's half-angle theta_b of its grain's c-axis c, |e_0 . c| >= cos theta_b
 //   intra_grain     otherwise
 // and takes its class's constants: the stiffnesses and contact point of bond_model.h from the
-// class's bond material, its strengths drawn around the class's means (bond_strength.h; the
-// failure law itself, criterion, friction angle, moment factor and fracture energies, is the
-// specimen's). Intra-grain bonds are the Bonds and Damage values; every class value defaults to
-// them. A class only picks per-bond constants at formation: the force loops read them as they
-// read a homogeneous specimen's.
+// class's bond material, its strengths drawn around the class's means (bond_strength.h), and its
+// friction angle, moment factor and fracture energies (bond_damage.h FailureConstants; the
+// failure mode and shear criterion are the specimen's). Intra-grain bonds are the Bonds and
+// Damage values; every class value defaults to them. A class only picks per-bond constants at
+// formation: the force loops read them as they read a homogeneous specimen's (the failure
+// constants through the class byte, from a table of four).
 //
 // Basal bonds: ice deforms by slip on its basal planes (normal c) far more easily than by any
 // other system (Schulson & Duval 2009, Creep and Fracture of Ice, ch. 5), so a grain's interior
@@ -45,9 +46,13 @@ namespace dembridge::dem
 struct BondClassConfig
 {
   BondMaterial material;
-  double tensile_strength = 0; ///< sigma_t, Pa (mean)
-  double shear_strength = 0;   ///< tau_c, Pa (mean; constant criterion)
-  double cohesion = 0;         ///< c, Pa (mean; Mohr-Coulomb)
+  double tensile_strength = 0;   ///< sigma_t, Pa (mean)
+  double shear_strength = 0;     ///< tau_c, Pa (mean; constant criterion)
+  double cohesion = 0;           ///< c, Pa (mean; Mohr-Coulomb)
+  double friction_angle = 0;     ///< phi, degrees (Mohr-Coulomb)
+  double moment_factor = 1;      ///< beta in [0, 1] (bond_stress.h)
+  double fracture_energy_I = 0;  ///< G_f, J/m^2, tension governs (softening)
+  double fracture_energy_II = 0; ///< G_f, J/m^2, shear governs (softening)
 
   /// The intra-grain values: the Bonds material and the Damage means.
   static BondClassConfig of_specimen(const BondMaterial& material, const DamageConfig& damage);
@@ -83,11 +88,11 @@ std::array<BondClassConfig, bond_class_count> bond_class_configs(const Microstru
                                                                  const BondMaterial& material,
                                                                  const DamageConfig& damage);
 
-/// The strength means of each class for assign_bond_strengths, by the shear criterion of
-/// @p damage.
-std::array<StrengthMeans, bond_class_count>
-class_strength_means(const std::array<BondClassConfig, bond_class_count>& classes,
-                     const DamageConfig& damage);
+/// What each class fails by, for assign_bond_strengths: its strength means by the shear
+/// criterion of @p damage, and its failure constants.
+std::array<ClassDamage, bond_class_count>
+class_damage(const std::array<BondClassConfig, bond_class_count>& classes,
+             const DamageConfig& damage);
 
 /// What the microstructure gave a specimen: the grains (their seeds and c-axes), bond counts
 /// per class.
@@ -101,7 +106,7 @@ struct MicrostructureSummary
 /// Assigns the grains (p.grain) and classes the bonds just formed (bonds.bond_class), giving
 /// each non-intra-grain bond its class's stiffness constants (and with config.smooth_joint the
 /// store the planes' normal, bonds.smooth_joint_normal) (strengths follow in
-/// assign_bond_strengths with class_strength_means; with config.basal_smooth_joint each basal
+/// assign_bond_strengths with class_damage; with config.basal_smooth_joint each basal
 /// bond's c-axis, bonds.basal_normal). Throws InputError naming the key when the grains or planes
 /// do not fit the packing (column_grains.h, weak_planes.h) or a plane crosses no bond.
 MicrostructureSummary

@@ -89,16 +89,16 @@ Model build_model(const CaseConfig& c)
   if (c.damage.law.mode != FailureMode::none && c.run.static_solver)
     throw InputError("Damage/failure: the static solver solves the linear, undamaged bond "
                      "network; bond failure needs Simulation/solver = explicit");
-  std::array<StrengthMeans, bond_class_count> class_means{};
+  std::array<ClassDamage, bond_class_count> class_damages{};
   if (c.microstructure.enabled()) // grains and bond classes, before the strengths they pick
   {
     const auto classes = bond_class_configs(c.microstructure, c.bonds.material, c.damage);
     m.microstructure = apply_microstructure(p, m.bonds, c.microstructure, classes);
-    class_means = class_strength_means(classes, c.damage);
+    class_damages = class_damage(classes, c.damage);
   }
   assign_bond_strengths(m.bonds, c.damage, &m.particles.reference_position,
-                        c.microstructure.enabled() ? std::span<const StrengthMeans>(class_means)
-                                                   : std::span<const StrengthMeans>());
+                        c.microstructure.enabled() ? std::span<const ClassDamage>(class_damages)
+                                                   : std::span<const ClassDamage>());
 
   if (c.groups.size() > 32)
     throw InputError("Groups/names: at most 32 groups");

@@ -44,6 +44,7 @@ ExplicitSolver::ExplicitSolver(ParticleStore& particles, BondStore& bonds,
   constrained_w_.resize(constrained_.size());
   constrained_reaction_.assign(constrained_.size(), Vector6::Zero());
   applied_pressure_.assign(loads_.size(), 0.0);
+  group_reaction_.assign(loads_.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t g = 0; g < groups_.size() && g < 32; ++g)
     for (int i : groups_[g].members)
       p_.group_mask[i] |= 1u << g;
@@ -174,6 +175,17 @@ void ExplicitSolver::apply_loads()
 
 double ExplicitSolver::reference_stress(int load) const
 {
+  const double shared = group_reaction_[std::size_t(load)];
+  return (std::isnan(shared) ? own_group_reaction(load) : shared) / loads_[std::size_t(load)].area;
+}
+
+void ExplicitSolver::set_group_reaction(int load, double reaction)
+{
+  group_reaction_.at(std::size_t(load)) = reaction;
+}
+
+double ExplicitSolver::own_group_reaction(int load) const
+{
   const Load& l = loads_[std::size_t(load)];
   const Vec3 direction = l.value.normalized();
   double reaction = 0;
@@ -182,7 +194,7 @@ double ExplicitSolver::reference_stress(int load) const
     const std::size_t c = slot(i);
     reaction += constrained_reaction_[c].head<3>().dot(direction);
   }
-  return reaction / l.area;
+  return reaction;
 }
 
 template <bool record> void ExplicitSolver::integrate()
@@ -392,6 +404,7 @@ ExplicitSolver::RunningState ExplicitSolver::take_running_state()
   s.max_speed = max_speed_, s.unbalanced_mean = unbalanced_mean_;
   s.unbalanced_ratio = unbalanced_ratio_, s.unbalanced = unbalanced_parts();
   s.cracks = std::move(cracks_), s.broken_by_mode = broken_by_mode_;
+  s.applied_pressure = applied_pressure_;
   cracks_.clear();
   return s;
 }
@@ -407,6 +420,8 @@ void ExplicitSolver::set_running_state(RunningState&& s)
   cracks_ = std::move(s.cracks);
   cracks_.reserve(capacity);
   broken_by_mode_ = s.broken_by_mode;
+  if (s.applied_pressure.size() == applied_pressure_.size()) // (empty: a state of figures only)
+    applied_pressure_ = std::move(s.applied_pressure);
 }
 
 std::array<double, 6> ExplicitSolver::support_reaction(std::size_t i) const

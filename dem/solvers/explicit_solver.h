@@ -121,6 +121,7 @@ public:
     UnbalancedParts unbalanced;
     std::vector<CrackEvent> cracks;
     std::array<long, 2> broken_by_mode{};
+    std::vector<double> applied_pressure; ///< per load (the next step's trapezoidal work)
   };
   /// Moves the state out (the crack log with it); the solver is not stepped again after.
   RunningState take_running_state();
@@ -141,6 +142,11 @@ public:
   /// sigma_ref of loads.h: the support reaction on load @p load's group along its value, over
   /// its area, at the last step.
   double reference_stress(int load) const;
+  /// The part of that reaction (N) that this solver's own group members carry. A distributed
+  /// run's solver holds only its rank's members, so it passes the sum over the ranks back with
+  /// set_group_reaction, which reference_stress then reads instead of its own part.
+  double own_group_reaction(int load) const;
+  void set_group_reaction(int load, double reaction);
   /// Latest end of any load ramp: after it, loads are constant.
   double last_ramp_end() const;
 
@@ -222,6 +228,7 @@ private:
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vector6> constrained_reaction_; ///< support reactions of the previous step
   std::vector<double> applied_pressure_;      ///< per load: a pressure's value at the last step
+  std::vector<double> group_reaction_;        ///< per load: the reaction over every rank, or NaN
   /// Bond ranges: phase 0 ranges run in parallel (one per chunk), then phase 1 (cut bonds
   /// between chunks s, s+1 with s even) in parallel, phase 2 (s odd), then the rest serially.
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> phases_;

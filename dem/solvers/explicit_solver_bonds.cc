@@ -22,6 +22,10 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
   constexpr int S = particle_record_size<dashpots>;
   double* sums = particle_sums_.data(); // per particle, the records' layout (bond_block.h)
   [[maybe_unused]] const FailureLaw& law = b_.failure;
+  // per bond, its class's constants (a table of four indexed by the class byte), or the law's
+  [[maybe_unused]] const FailureConstants* class_law =
+      law.by_class && !b_.bond_class.empty() ? law.classes.data() : nullptr;
+  [[maybe_unused]] const BondClass* bond_class = b_.bond_class.data();
   [[maybe_unused]] const double dt = settings_.time_step;
   [[maybe_unused]] const int owned = int(owned_);
   const BondLawArrays arrays(p_, b_);
@@ -75,10 +79,12 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
         const double* axis = f.e;
         if constexpr (smooth)
           block.lane_axis(j, f), axis = f.n;
-        const SectionLoads loads = section_loads(Fe, Me, axis, R, law.moment_factor);
+        const FailureConstants& constants = class_law ? class_law[std::size_t(bond_class[k])] : law;
+        const SectionLoads loads = section_loads(Fe, Me, axis, R, constants.moment_factor);
         const double tension_cap = b_.tensile_strength[k] * area * R;
         const double shear_cap =
-            shear_strength(law, b_.shear_strength[k], loads.normal_force, area) * area * R;
+            shear_strength(law.shear, constants, b_.shear_strength[k], loads.normal_force, area) *
+            area * R;
         // kappa_s > kappa_t (rare: read on failure only)
         auto shear_governs = [&] { return loads.shear * tension_cap > loads.tension * shear_cap; };
         // Power of the trial elastic forces on the particles at v^{n-1/2}, w^{n-1/2} (eq. 5).
@@ -125,7 +131,7 @@ void ExplicitSolver::bond_range(std::size_t begin, std::size_t end, double& stra
             // softening starts: kappa_u from the energy at the peak (eq. 4)
             const double peak_energy = f.strain_energy / (kappa * kappa);
             const bool shear = shear_governs();
-            const double gf = shear ? law.fracture_energy_II : law.fracture_energy_I;
+            const double gf = shear ? constants.fracture_energy_II : constants.fracture_energy_I;
             b_.kappa_ultimate[k] = std::max(1.0, gf * area / peak_energy);
             b_.failure_mode[k] = shear ? CrackMode::shear : CrackMode::tension;
             b_.state[k] = BondState::softening;

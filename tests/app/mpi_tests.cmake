@@ -26,20 +26,8 @@ if(MPIEXEC_EXECUTABLE)
   # tests/distributed); the record of the first contact does not
   mpi_error_test(run_dem_contact_monitor 2 "contact_two_spheres.prm: Contacts/monitor: the first contact's record does not run on several MPI ranks"
                  run ${EX}/contact_two_spheres.prm)
-  # DEM checkpoints written on several ranks resume on any number (tests/distributed:
-  # distributed_compression_failure_resume); one written on one rank (the run killed after 3,000
-  # steps), whose contacts are one store's, resumes on one only: on two refused in one line naming
-  # both counts, exit code 1, the checkpoint and the staged files kept
-  app_python_test(mpi_np2_resume_dem checkpoint_ranks.py $<TARGET_FILE:dembridge>
-    ${MPIEXEC_EXECUTABLE} ${EX}/cantilever.prm ${OUT}/mpi_np2_resume_dem --ranks 1:2
-    --kill-after-step 3000 --kept .partial/history.csv.part
-    --set "Output/checkpoint interval=0.001" TIMEOUT 120 PROCESSORS 2 MPI_ENV)
-  # the pressure of a pressure load's last step is the solver's state, not gathered from the
-  # ranks: its checkpoints are refused on several ranks (columnar_biaxial.prm cut down as in
-  # checkpoint_resume_pressure)
-  mpi_error_test(checkpoint_dem_pressure 2 "^dembridge: error: columnar_biaxial.prm: Load confine/type: a pressure load is not checkpointed on several MPI ranks yet"
-                 run ${EX}/columnar_biaxial.prm --set "Particles/box size=0.04, 0.04, 0.03"
-                 --set "Output/checkpoint interval=0.001")
+  # DEM checkpoints resume on any number of ranks, written on one or several (tests/distributed:
+  # distributed_compression_failure_resume, _resume_from_one)
   mpi_error_test(verify 2 "^dembridge: error: verify runs on one MPI rank \\(the FE model is small\\), this job has 2"
                  verify ${EX}/compression_cubic.prm --youngs-modulus 3e9 --poisson-ratio 0.2)
   mpi_error_test(elasticity 2 "^dembridge: error: elasticity runs on one MPI rank"

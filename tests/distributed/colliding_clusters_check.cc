@@ -163,13 +163,7 @@ int colliding_clusters_check(MPI_Comm comm)
     if (!record)
       continue;
     const auto &e = ranks.energy(), &s = one.energy();
-    for (const auto& [x, y] :
-         {std::pair(e.kinetic, s.kinetic), std::pair(e.strain, s.strain),
-          std::pair(e.damping, s.damping), std::pair(e.external, s.external),
-          std::pair(e.contact_strain, s.contact_strain), std::pair(e.friction, s.friction),
-          std::pair(e.contact_damping, s.contact_damping), std::pair(e.wall_work, s.wall_work),
-          std::pair(e.initial, s.initial)})
-      worst_energy = std::max(worst_energy, std::abs(x - y) / s.largest());
+    worst_energy = std::max(worst_energy, energy_difference(e, s));
     worst_balance = std::max(worst_balance, std::abs(e.relative_error() - s.relative_error()));
     stored = std::max(stored, s.contact_strain / s.largest());
     const long across = touching_across();

@@ -22,8 +22,8 @@ usage: compare_runs.py REF_DIR RUN_DIR [--rtol R] [--history-rtol H] [--history-
   --history-skip leaves out a column that holds round-off only (a coupled run's tie gap, about
   1e-14 m; the transverse displacement of a beam loaded in its plane of symmetry, about
   1e-15 m), which no scale of its own can compare;
-- with --cracks, cracks.csv holds the same cracks in the same order: particles, bond and mode
-  equal, time, position and energy within 1e-9 relative (ten printed digits), the axis (a unit
+- with --cracks, cracks.csv holds the same cracks in the same order: particles, bond, mode (and
+  a microstructure's bond class and grains) equal, time, position and energy within 1e-9 relative (ten printed digits), the axis (a unit
   vector) within 1e-9 absolute.
 Prints one line per check; exit code 1 when one fails.
 """
@@ -142,7 +142,8 @@ def main(argv):
         rows_a = list(csv.reader(open(ref_dir + "/cracks.csv")))
         rows_b = list(csv.reader(open(run_dir + "/cracks.csv")))
         head = rows_a[0]
-        exact = [head.index(k) for k in ("mode", "particle_a", "particle_b", "bond")]
+        exact = [head.index(k) for k in ("mode", "particle_a", "particle_b", "bond", "class",
+                                         "grains") if k in head]
         unit = [j for j, k in enumerate(head) if k.startswith("axis")]
         same = len(rows_a) == len(rows_b) and rows_a[0] == rows_b[0]
         for x, y in zip(rows_a[1:], rows_b[1:]):

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <utility>
 
 using namespace dembridge::distributed_check;
 
@@ -35,6 +36,21 @@ std::string figure(double x)
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", x);
   return text;
+}
+
+double energy_difference(const dem::EnergyBalance& ranks, const dem::EnergyBalance& one)
+{
+  const auto& e = ranks;
+  const auto& s = one;
+  double worst = 0;
+  for (const auto& [x, y] :
+       {std::pair(e.kinetic, s.kinetic), std::pair(e.strain, s.strain),
+        std::pair(e.damping, s.damping), std::pair(e.external, s.external),
+        std::pair(e.fracture, s.fracture), std::pair(e.contact_strain, s.contact_strain),
+        std::pair(e.friction, s.friction), std::pair(e.contact_damping, s.contact_damping),
+        std::pair(e.wall_work, s.wall_work), std::pair(e.initial, s.initial)})
+    worst = std::max(worst, std::abs(x - y));
+  return worst / s.largest();
 }
 
 std::string relative(double a, double b)
