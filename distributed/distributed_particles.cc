@@ -67,6 +67,9 @@ std::uint64_t model_checksum(const dem::Model& m)
 
 std::string smooth_joints_on_ranks(const dem::BondStore& bonds)
 {
+  if (bonds.sliding_joints && bonds.sliding_joints->has_boundaries())
+    return "Bond class grain_boundary/joint friction: not available in a distributed (MPI) run "
+           "yet; run it on one rank";
   if (!bonds.has_smooth_joints())
     return {};
   const char* bond_class = bonds.has_plane_joints() ? "weak_plane" : "basal";

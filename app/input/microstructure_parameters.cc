@@ -41,6 +41,11 @@ double number_or(ParameterHandler& prm, const std::string& section, const std::s
                         "' is not a number (leave it empty for the Bonds or Damage value)");
 }
 
+bool blank(const std::string& text)
+{
+  return text.find_first_not_of(" \t") == std::string::npos;
+}
+
 /// The weak-plane class's joint friction (in its section), or @p fallback when it is empty; set
 /// while @p smooth (its smooth joint) is false, it is refused: nothing would read it.
 double joint_friction(ParameterHandler& prm, const std::string& section, bool smooth,
@@ -149,6 +154,16 @@ void declare_microstructure_parameters(ParameterHandler& prm)
           "strength or cohesion against the shear stress), carrying no couple; so the plane's "
           "stiffness and strength do not depend on how particles sit across it. false: the "
           "bonds follow the bond law along their own axes, as the other classes.");
+    if (std::string(section) == "Bond class grain_boundary")
+      prm.declare_entry(
+          "joint friction", "", Anything(),
+          "Empty: a pair of particles in two grains whose bond is broken, or that has none, "
+          "meets as two spheres. A value mu_gb (dimensionless, >= 0): it meets as an unbonded "
+          "smooth joint on the grains' boundary, the plane bisecting their two seeds (the "
+          "contact law's normal force on the approach along the boundary's normal, compression "
+          "only, and a shear spring in the plane capped at mu_gb times that force), so broken "
+          "boundaries slide on their plane and never ride up over one another as spheres "
+          "would. Not in a run over several ranks.");
     if (std::string(section) == "Bond class weak_plane")
       prm.declare_entry(
           "joint friction", "", Anything(),
@@ -255,6 +270,13 @@ dem::MicrostructureConfig parse_microstructure_parameters(ParameterHandler& prm,
     const bool smooth = k > 0 && prm.get_bool("smooth joint");
     if (k == 1)
       c.joint_friction = joint_friction(prm, section, smooth, c.joint_friction);
+    if (k == 0 && !blank(prm.get("joint friction")))
+    {
+      c.boundary_joint_friction = joint_friction(prm, section, true, 0.0);
+      if (!has_class[0])
+        throw dem::InputError(section + "/joint friction: set, but the case has no grains "
+                                        "(Microstructure/grains = columnar makes them)");
+    }
     prm.leave_subsection();
     if (smooth && !has_class[k])
       throw dem::InputError(section + "/smooth joint: true, but the case has no " + class_bonds[k] +

@@ -8,6 +8,12 @@
 // the number of planes between x_a and x_b (signed along N), and a bond crosses a plane exactly
 // when its ends' sides differ (weak_planes.h: the bonds' classes). Sides are read at the
 // reference positions, where the classes were read: a particle keeps its side while it slides.
+// Grain boundaries may slide too: two particles of two grains g and h (ParticleStore::grain) meet
+// on the grains' boundary, the plane that bisects their seeds S_g and S_h (a Voronoi cell's
+// face: columnar_grains.h), whose normal from g's side to h's is
+//   n_gh = (S_h - S_g) / |S_h - S_g|
+// with the boundaries' own friction coefficient mu_gb. A pair that lies across a weak plane as
+// well meets on the plane (the weak-plane class wins, as for the bonds).
 #include "dem/core/types.h"
 #include <cmath>
 #include <vector>
@@ -20,6 +26,16 @@ struct SlidingJoints
   std::vector<double> offsets; ///< o_m, m
   double spacing = 0;          ///< s, m (0: each plane once)
   double friction = 0;         ///< mu_j >= 0: Coulomb's coefficient on the plane
+  /// Each grain's seed S_g (columnar_grains.h), m; empty: the grain boundaries do not slide.
+  std::vector<Vec3> grain_seed;
+  double boundary_friction = 0; ///< mu_gb >= 0: Coulomb's coefficient on a grain boundary
+
+  bool has_boundaries() const { return !grain_seed.empty(); }
+  /// n_gh of the header: from grain g's side of their boundary to grain h's.
+  Vec3 boundary_normal(std::int32_t g, std::int32_t h) const
+  {
+    return (grain_seed[std::size_t(h)] - grain_seed[std::size_t(g)]).normalized();
+  }
 
   /// side(x) of the header.
   long side(const Vec3& x) const

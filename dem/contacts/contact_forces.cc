@@ -63,11 +63,20 @@ void ContactForces::attach(const ParticleStore& p, const BondStore& bonds)
     bond_partner_[std::size_t(fill[b])] = bonds.a[k], bond_index_[std::size_t(fill[b]++)] = int(k);
   }
   joint_side_.clear();
+  joint_grain_.clear();
   if (bonds.sliding_joints)
   {
     joint_side_.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       joint_side_[i] = bonds.sliding_joints->side(p.reference_position[i]);
+    if (bonds.sliding_joints->has_boundaries())
+    {
+      if (p.grain.size() != n)
+        throw InputError("Bond class grain_boundary/joint friction: sliding grain boundaries "
+                         "need every particle's grain, which a run over several ranks does "
+                         "not keep");
+      joint_grain_ = p.grain;
+    }
   }
   if (!(list_.skin() > 0)) // else fixed over the whole model (fix_skin)
     fix_skin(p);
@@ -276,11 +285,16 @@ void ContactForces::compute(ParticleStore& p, double time, double dt)
   double joint_friction = 0;
   auto joint_pair = [&](std::size_t k, std::size_t i, std::size_t j, std::int32_t bond, bool book)
   {
-    const Vec3 n = joint_side_[i] < joint_side_[j] ? joints->normal : Vec3(-joints->normal);
+    // a weak plane's normal, or the grains' boundary's (sliding_joints.h)
+    const bool plane = pair_joint_[k] == 1;
+    const Vec3 n = !plane ? joints->boundary_normal(joint_grain_[i], joint_grain_[j])
+                   : joint_side_[i] < joint_side_[j] ? joints->normal
+                                                     : Vec3(-joints->normal);
     double reach = r[i] + r[j];
     if (bond >= 0)
       reach = std::max(reach, bonds_->rest_length[std::size_t(bond)]);
-    const double mu_j = joints->friction, m_eff = m[i] * m[j] / (m[i] + m[j]);
+    const double mu_j = plane ? joints->friction : joints->boundary_friction;
+    const double m_eff = m[i] * m[j] / (m[i] + m[j]);
     const double r_eff = bond >= 0 ? 0.0 : r[i] * r[j] / (r[i] + r[j]);
     // the joint's springs: a broken bond's, or the contact law's
     auto with_springs = [&](auto&& act)

@@ -146,8 +146,11 @@ private:
   // the contact history
   NeighbourList list_;
   std::vector<std::int32_t> pair_bond_;
-  std::vector<std::uint8_t> pair_joint_; ///< 1: across a sliding joint (empty without joints)
-  std::vector<long> joint_side_;         ///< per particle: SlidingJoints::side at X (or empty)
+  /// 1: across a sliding joint's plane, 2: across a sliding grain boundary, 0: neither (empty
+  /// without sliding joints)
+  std::vector<std::uint8_t> pair_joint_;
+  std::vector<long> joint_side_;          ///< per particle: SlidingJoints::side at X (or empty)
+  std::vector<std::int32_t> joint_grain_; ///< per particle: its grain, with sliding boundaries
   std::vector<Vec3> xi_, theta_, xi_old_, theta_old_;
   std::vector<double> kt_, kr_, kt_old_, kr_old_; ///< spring stiffnesses at the last step; 0: apart
 

@@ -40,8 +40,12 @@ void ContactForces::link_pairs_to_bonds()
   }
   pair_joint_.assign(joint_side_.empty() ? 0 : first.size(), 0);
   for (std::size_t k = 0; k < pair_joint_.size(); ++k)
-    pair_joint_[k] =
-        joint_side_[std::size_t(first[k])] != joint_side_[std::size_t(second[k])] ? 1 : 0;
+  {
+    const auto i = std::size_t(first[k]), j = std::size_t(second[k]);
+    pair_joint_[k] = joint_side_[i] != joint_side_[j]                              ? 1
+                     : !joint_grain_.empty() && joint_grain_[i] != joint_grain_[j] ? 2
+                                                                                   : 0;
+  }
 }
 
 void ContactForces::visit_state(StateArchive& a)

@@ -115,6 +115,14 @@ apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig&
     p.grain = std::move(map.of_particle);
     summary.grains = std::move(map.grains);
     summary.columns = map.columns;
+    if (config.boundary_joint_friction)
+    {
+      if (!b.sliding_joints) // no plane offsets: no pair lies across a plane
+        b.sliding_joints = SlidingJoints{};
+      b.sliding_joints->boundary_friction = *config.boundary_joint_friction;
+      for (const Grain& g : summary.grains)
+        b.sliding_joints->grain_seed.push_back(g.seed);
+    }
   }
   std::optional<WeakPlaneSet> planes = config.weak_planes;
   std::vector<std::size_t> crossing; // bonds per plane offset
@@ -128,8 +136,11 @@ apply_microstructure(ParticleStore& p, BondStore& b, const MicrostructureConfig&
     if (config.smooth_joint)
     {
       b.smooth_joint_normal = planes->normal; // unit (check_weak_planes)
-      b.sliding_joints =
-          SlidingJoints{planes->normal, planes->offsets, planes->spacing, config.joint_friction};
+      if (!b.sliding_joints) // the grains' boundaries, if they slide, are in already
+        b.sliding_joints = SlidingJoints{};
+      SlidingJoints& joints = *b.sliding_joints;
+      joints.normal = planes->normal, joints.offsets = planes->offsets;
+      joints.spacing = planes->spacing, joints.friction = config.joint_friction;
     }
   }
   b.bond_class.assign(nb, BondClass::intra_grain);

@@ -73,6 +73,10 @@ struct MicrostructureConfig
   /// With smooth_joint: mu_j of the pairs across the planes once unbonded
   /// (contacts/joint_contact.h).
   double joint_friction = 0.5;
+  /// With a value mu_gb: pairs of particles in two grains whose bond is broken, or that have
+  /// none, meet as unbonded smooth joints on their grains' boundary (bonds/sliding_joints.h,
+  /// contacts/joint_contact.h) with friction mu_gb; unset: they meet as spheres.
+  std::optional<double> boundary_joint_friction;
 
   bool enabled() const { return grains.enabled || weak_planes.has_value(); }
 };

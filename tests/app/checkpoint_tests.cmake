@@ -87,7 +87,8 @@ checkpoint_case(columnar ${EX}/columnar_tension.prm FLAGS --expect-cracks
       "Output/checkpoint interval=0.0015" "Contacts/model=linear"
       "Contacts/normal stiffness=1.5e7" "Contacts/friction coefficient=0.5")
 # Basal joints (examples/columnar_compression.prm cut down to 0.05 x 0.03 x 0.03 m, 1,147
-# bonds of which 91 basal smooth joints, 46 of them broken by the end): each basal bond's normal,
+# bonds of which 91 basal smooth joints, 14 of them broken by the end, and 337 grain-boundary
+# bonds, all broken and sliding on their boundaries by the end): each basal bond's normal,
 # its grain's c-axis, is the case's and comes back with the classes (without it the resumed
 # basal bonds would follow the unified law and the files differ).
 checkpoint_case(basal ${EX}/columnar_compression.prm FLAGS --expect-cracks
