@@ -6,7 +6,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include "dem/bonds/bond_stress.h"
+#include "coupling/band_failure.h"
 #include "distributed/distributed_solver.h"
 
 #include <algorithm>
@@ -186,7 +186,6 @@ void CoupledProblem::check_band_damage()
       band_kappa_.assign(blending_.band_bonds.size(), 0.0);
     const auto& b = model_.bonds;
     const auto& p = model_.particles;
-    const auto& law = b.failure;
     double largest = band_damage_.max_failure_index;
     for (std::size_t n = 0; n < blending_.band_bonds.size(); ++n)
     {
@@ -194,14 +193,9 @@ void CoupledProblem::check_band_damage()
       const double alpha = blending_.band_bond_alpha[n];
       if (alpha < 1e-9 || b.state[k] == dem::BondState::broken)
         continue;
-      const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
-      const Vec3 e = chord.normalized(), F = b.force[k] / alpha, M = b.moment[k] / alpha;
-      const dem::FailureConstants& constants = b.failure_constants(k); // its class's
-      const auto s =
-          dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], constants.moment_factor);
-      const double tau_max =
-          dem::shear_strength(law.shear, constants, band_shear_[n], s.normal_force, s.area);
-      const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
+      const double kappa = band_failure_index(b, k, p.position[b.b[k]] - p.position[b.a[k]],
+                                              Vec3(b.force[k] / alpha), Vec3(b.moment[k] / alpha),
+                                              band_tensile_[n], band_shear_[n]);
       if (adaptive_)
         band_kappa_[n] = kappa;
       largest = std::max(largest, kappa);

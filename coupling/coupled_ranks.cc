@@ -8,8 +8,8 @@
 // factorised system and applies the tie forces to its own particles. At a record the energies
 // and the band's damage are reduced over the ranks (sums in rank order, the largest index and
 // the first band bond to fail by its index in the band, as one rank finds it).
+#include "coupling/band_failure.h"
 #include "coupling/coupled_problem.h"
-#include "dem/bonds/bond_stress.h"
 #include "dem/measurements/particle_stress.h"
 #include "distributed/distributed_solver.h"
 #include "distributed/run_explicit.h"
@@ -140,7 +140,6 @@ void CoupledProblem::band_kappa_on_rank(const dem::ParticleStore& p)
   if (band_tensile_.empty())
     return;
   const dem::BondStore& b = dist_->particles().bonds();
-  const auto& law = b.failure;
   for (std::size_t j = 0; j < own_band_.size(); ++j)
   {
     const auto k = std::size_t(own_band_[j].first);
@@ -148,14 +147,9 @@ void CoupledProblem::band_kappa_on_rank(const dem::ParticleStore& p)
     const double alpha = blending_.band_bond_alpha[n];
     if (alpha < 1e-9 || b.state[k] == dem::BondState::broken)
       continue;
-    const Vec3 chord = p.position[b.b[k]] - p.position[b.a[k]];
-    const Vec3 e = chord.normalized(), F = band_force_[j] / alpha, M = band_moment_[j] / alpha;
-    const dem::FailureConstants& constants = b.failure_constants(k); // its class's
-    const auto s =
-        dem::bond_stress(F.data(), M.data(), e.data(), b.radius[k], constants.moment_factor);
-    const double tau_max =
-        dem::shear_strength(law.shear, constants, band_shear_[n], s.normal_force, s.area);
-    const double kappa = std::max(s.tensile / band_tensile_[n], s.shear / tau_max);
+    const double kappa = band_failure_index(
+        b, k, p.position[b.b[k]] - p.position[b.a[k]], Vec3(band_force_[j] / alpha),
+        Vec3(band_moment_[j] / alpha), band_tensile_[n], band_shear_[n]);
     band_found_[0] = std::max(band_found_[0], kappa);
     if (kappa >= 1 && !band_damage_.reached && (band_found_[1] < 0 || double(n) < band_found_[1]))
     {
